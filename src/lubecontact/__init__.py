@@ -1,0 +1,35 @@
+"""lubecontact: lubricated, sliding, rough electrical contacts (after Jackson & Angadi 2022).
+
+Public surface (see DESIGN.md): ``load_scene``, ``solve``, ``sweep``, ``rough_contact``.
+"""
+
+from importlib.metadata import PackageNotFoundError, version
+
+try:
+    __version__ = version("lubecontact")
+except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = "0+unknown"
+
+__all__ = ["__version__", "load_scene", "solve", "sweep", "rough_contact", "SceneError"]
+
+
+def __getattr__(name):
+    # Lazy imports keep `import lubecontact` (and the CLI's --help) fast: numba and
+    # xarray load only when a solver piece is used.
+    if name in ("load_scene", "SceneError", "Scene"):
+        from . import scene
+
+        return getattr(scene, name)
+    if name == "solve":
+        from .solver import solve
+
+        return solve
+    if name == "sweep":
+        from .sweep import sweep
+
+        return sweep
+    if name == "rough_contact":
+        from .rough_contact import rough_contact
+
+        return rough_contact
+    raise AttributeError(f"module 'lubecontact' has no attribute {name!r}")

@@ -1,0 +1,133 @@
+"""The computational mesh shared by the Reynolds, contact and deformation sub-models.
+
+Paper, section 2.6: the same nodal grid carries the fluid pressure (Eq. 1) and the
+rough-surface contact (Eq. 11). Nodes span [x_min, x_max] x [-L/2, L/2] with the
+boundary nodes included; x is the sliding direction (inlet at x_min), y the cylinder axis.
+``ny == 1`` is line-contact mode: one row of nodes, no side leakage, loads per unit length
+times the cylinder length L.
+
+Automatic domain (``x_min``/``x_max`` = auto): the length scale
+``s = max(2 b_H, sqrt(2 R * 10 sigma))`` covers the Hertz width b_H (Johnson, E*) and the
+inlet/outlet zone where the undeformed gap (Eq. 4) is below ten roughness heights, the
+film a fluid can build. The domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the
+fluid pressure builds, than downstream, where it cavitates. It does not depend on speed,
+so every point of a speed sweep uses the same mesh.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from .materials import effective_modulus
+
+UPSTREAM_LENGTHS = 3.5
+DOWNSTREAM_LENGTHS = 1.5
+MIN_INTERVALS_ACROSS_CONTACT = 2.0
+
+
+def hertz_half_width(scene) -> float:
+    """Hertz line-contact half-width b = sqrt(4 w' R / (pi E*)), w' = F/L (Johnson 4.43)."""
+    load_per_length = scene.operating.force / scene.geometry.length
+    return float(np.sqrt(4.0 * load_per_length * scene.geometry.radius / (np.pi * effective_modulus(scene))))
+
+
+def contact_width_estimate(scene) -> float:
+    """Width in x over which solid contact is expected: the larger of the Hertz width 2 b_H
+    and the width where the undeformed gap x^2/2R stays below 3 sigma (rough contact
+    spreads the load beyond Hertz)."""
+    r, sigma = scene.geometry.radius, scene.roughness.sigma
+    return 2.0 * max(hertz_half_width(scene), float(np.sqrt(6.0 * r * sigma)))
+
+
+def auto_length_scale(scene) -> float:
+    r, sigma = scene.geometry.radius, scene.roughness.sigma
+    return max(2.0 * hertz_half_width(scene), float(np.sqrt(2.0 * r * 10.0 * sigma)))
+
+
+def domain_x(scene) -> tuple[float, float]:
+    """(x_min, x_max) in m: the scene's values, or the automatic domain where they are None."""
+    s = auto_length_scale(scene)
+    x_min = -UPSTREAM_LENGTHS * s if scene.mesh.x_min is None else float(scene.mesh.x_min)
+    x_max = DOWNSTREAM_LENGTHS * s if scene.mesh.x_max is None else float(scene.mesh.x_max)
+    return x_min, x_max
+
+
+def mesh_problems(scene) -> list[str]:
+    """Reasons the scene's mesh cannot resolve the problem (empty when fine)."""
+    problems = []
+    x_min, x_max = domain_x(scene)
+    if not x_max > x_min:
+        problems.append(f"mesh.x_max ({x_max:g} m) must be greater than mesh.x_min ({x_min:g} m)")
+        return problems
+    if scene.geometry.radius <= max(abs(x_min), abs(x_max)):
+        problems.append(
+            f"mesh domain [{x_min:g}, {x_max:g}] m reaches beyond the cylinder radius "
+            f"{scene.geometry.radius:g} m (Eq. 4 needs |x| < R)"
+        )
+    dx = (x_max - x_min) / (scene.mesh.nx - 1)
+    width = contact_width_estimate(scene)
+    if dx * MIN_INTERVALS_ACROSS_CONTACT > width:
+        needed = int(np.ceil(MIN_INTERVALS_ACROSS_CONTACT * (x_max - x_min) / width)) + 1
+        problems.append(
+            f"mesh.nx = {scene.mesh.nx} is too coarse: node spacing {dx:.3g} m against an expected "
+            f"contact width of {width:.3g} m; use mesh.nx >= {needed} (or a smaller domain)"
+        )
+    return problems
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """Node coordinates and trapezoidal nodal areas of the shared grid."""
+
+    x: np.ndarray  # (nx,) m
+    y: np.ndarray  # (ny,) m; [0.0] in line mode
+    length: float  # cylinder length L, m
+
+    @property
+    def nx(self) -> int:
+        return self.x.size
+
+    @property
+    def ny(self) -> int:
+        return self.y.size
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return (self.ny, self.nx)
+
+    @property
+    def line(self) -> bool:
+        """Line-contact mode: one row of nodes standing for the whole length L."""
+        return self.ny == 1
+
+    @property
+    def dx(self) -> float:
+        return float(self.x[1] - self.x[0])
+
+    @property
+    def dy(self) -> float:
+        """Node spacing in y; the cylinder length L in line mode."""
+        return self.length if self.line else float(self.y[1] - self.y[0])
+
+    @cached_property
+    def nodal_area(self) -> np.ndarray:
+        """(ny, nx) trapezoidal weights in m^2: sum(p * nodal_area) integrates p over the domain."""
+        wx = np.full(self.nx, self.dx)
+        wx[[0, -1]] *= 0.5
+        if self.line:
+            wy = np.array([self.length])
+        else:
+            wy = np.full(self.ny, self.dy)
+            wy[[0, -1]] *= 0.5
+        return np.outer(wy, wx)
+
+
+def build_mesh(scene) -> Mesh:
+    x_min, x_max = domain_x(scene)
+    x = np.linspace(x_min, x_max, scene.mesh.nx)
+    half = 0.5 * scene.geometry.length
+    y = np.zeros(1) if scene.mesh.ny == 1 else np.linspace(-half, half, scene.mesh.ny)
+    return Mesh(x=x, y=y, length=scene.geometry.length)
