@@ -1,0 +1,98 @@
+"""Patir-Cheng average-flow model: expected gap, pressure flow factor, Poiseuille coefficient.
+
+The paper's modified Reynolds equation (Eq. 1) carries the pressure flow factors
+phi_x = phi_y = 1 - 0.90 exp(-0.56 h/sigma) of Eq. (2) (Patir & Cheng 1978,
+J. Lubr. Technol. 100:12, isotropic roughness gamma = 1). Patir & Cheng's averaged equation
+puts the *expected* gap h_T in the Couette term; for Gaussian heights of standard deviation
+sigma and mean-plane separation h (H = h/sigma)
+
+    h_T = sigma [H Phi(H) + phi(H)]          (Phi, phi: standard normal CDF and PDF)
+
+which tends to h for H >> 1 and to 0+ (never negative) for H -> -inf.
+
+Eq. (2) is fitted for H > 0.5 only; it turns negative below H ~ -0.19 and h^3 turns negative
+with h. Below H = 0.5 the Poiseuille coefficient follows the expected gap
+(DESIGN.md, "Physics: conventions"):
+
+    k(H) = phi_x(H) h^3 / (12 mu)                       H >= 0.5
+    k(H) = k(0.5) [h_T(H) / h_T(0.5)]^3                 H <  0.5
+
+continuous at H = 0.5, positive, and monotone in H. Smooth surfaces (sigma None or 0, i.e.
+``asperity_contact`` off) use h itself with phi = 1.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import erfcx, ndtr
+
+# Eq. (2): Patir & Cheng (1978) isotropic (gamma = 1) pressure flow factor 1 - C exp(-r H).
+PC_C = 0.90
+PC_R = 0.56
+# Lower end of the range Patir & Cheng fitted Eq. (2) over; the regularisation starts here.
+H_VALID = 0.5
+
+_INV_SQRT_2PI = 1.0 / np.sqrt(2.0 * np.pi)
+
+
+def _smooth(sigma) -> bool:
+    return sigma is None or sigma == 0
+
+
+def _mean_gap_ratio(H: np.ndarray) -> np.ndarray:
+    """h_T / sigma = H Phi(H) + phi(H), evaluated without cancellation.
+
+    For H >= 0 both terms are positive. For H = -t < 0 it is the first partial moment
+    F_1(t) = phi(t) - t Phi(-t) = exp(-t^2/2) [1/sqrt(2 pi) - (t/2) erfcx(t/sqrt 2)], whose
+    bracket loses only ~eps t^2 relatively; it underflows to 0 (not below) for t > ~38.
+    """
+    H = np.asarray(H, dtype=float)
+    t = np.maximum(-H, 0.0)  # >= 0, and 0 where the positive branch applies
+    upper = H * ndtr(H) + _INV_SQRT_2PI * np.exp(-0.5 * H * H)
+    lower = np.exp(-0.5 * t * t) * (_INV_SQRT_2PI - 0.5 * t * erfcx(t / np.sqrt(2.0)))
+    return np.where(H >= 0.0, upper, np.maximum(lower, 0.0))
+
+
+def expected_gap(h, sigma):
+    """Patir-Cheng expected gap h_T = sigma [H Phi(H) + phi(H)], H = h/sigma, in m.
+
+    Finite for any finite h, never negative, -> h for H >> 1 (|h_T - h| < 1e-5 sigma for
+    H > 3.9). Smooth surfaces (sigma None or 0): h_T = h.
+    """
+    h = np.asarray(h, dtype=float)
+    if _smooth(sigma):
+        return h
+    return sigma * _mean_gap_ratio(h / sigma)
+
+
+def pressure_flow_factor(H):
+    """Eq. (2): phi_x = phi_y = 1 - 0.90 exp(-0.56 H), H = h/sigma (fitted for H > 0.5)."""
+    return 1.0 - PC_C * np.exp(-PC_R * np.asarray(H, dtype=float))
+
+
+def poiseuille_coefficient(h, sigma, viscosity, flow_factors=True):
+    """Poiseuille coefficient k of the averaged Reynolds equation (Eq. 1), m^3/(Pa s).
+
+    k = phi_x(H) h^3/(12 mu) for H = h/sigma >= 0.5 and k(0.5) [h_T(H)/h_T(0.5)]^3 below
+    (continuous, positive, monotone in H). ``flow_factors=False`` sets phi_x = 1 (plain
+    Reynolds) with the same regularisation below H = 0.5, so k stays positive.
+    Smooth surfaces (sigma None or 0): k = h^3/(12 mu), which needs h > 0 everywhere.
+    """
+    h = np.asarray(h, dtype=float)
+    if _smooth(sigma):
+        if not np.all(h > 0.0):
+            raise ValueError(
+                f"smooth surfaces need a positive film everywhere; min h = {np.min(h):.3g} m "
+                "(the solid bodies interpenetrate without asperity contact)"
+            )
+        return h**3 / (12.0 * viscosity)
+
+    def factor(H):
+        return pressure_flow_factor(H) if flow_factors else np.ones_like(H)
+
+    H = h / sigma
+    k_valid = factor(H_VALID) * (H_VALID * sigma) ** 3 / (12.0 * viscosity)
+    H_upper = np.maximum(H, H_VALID)  # evaluate the fit only where it applies (no overflow)
+    upper = factor(H_upper) * (H_upper * sigma) ** 3 / (12.0 * viscosity)
+    lower = k_valid * (_mean_gap_ratio(H) / _mean_gap_ratio(H_VALID)) ** 3
+    return np.where(H >= H_VALID, upper, lower)

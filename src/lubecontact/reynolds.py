@@ -1,0 +1,306 @@
+"""Steady averaged Reynolds equation with the Reynolds (Swift-Stieber) cavitation condition.
+
+Paper Eq. (1) with Patir & Cheng's averaged form (J. Lubr. Technol. 100:12, 1978):
+
+    d/dx(k dp/dx) + d/dy(k dp/dy) = (U/2) dh_T/dx,      k = phi h^3/(12 mu)
+
+on the shared mesh (x sliding, y the cylinder axis). The block slides at U and the cylinder
+does not rotate, so the entrainment speed is (U1 + U2)/2 = U/2. p = 0 on the whole boundary
+(both x ends, and y = +-L/2 in 2D); in line mode (ny == 1) the problem is 1D in x.
+
+Discretisation (finite volumes on the nodal grid, second order). The volumetric flux is
+q = -k grad p + (U/2) h_T e_x. Each interior node owns the cell of size dx * dy around it;
+on a face between two nodes the Poiseuille coefficient and the expected gap are the
+arithmetic means of the nodal values. The net outflow of cell i is
+
+    w_i = (A p - b)_i = sum_faces T_f (p_i - p_nb) + (U/2) dy (h_T,e - h_T,w)
+
+with transmissibilities T = k_f dy/dx (x faces) and k_f dx/dy (y faces). A is a symmetric
+M-matrix (positive definite when k > 0).
+
+Cavitation (paper section 2.2: negative pressures set to zero) is solved as the linear
+complementarity problem it is: p >= 0, w >= 0 (in the ruptured zone a full film would need
+more fluid than arrives), p w = 0. Because A is an M-matrix, the primal-dual active-set
+method (Hintermueller, Ito & Kunisch 2002, SIAM J. Optim. 13:865) ends after finitely many
+steps, usually a handful: guess the cavitated set C, solve A_FF p_F = b_F on the pressurised
+set F, then C <- {i in C: w_i > 0} + {i in F: p_i < 0}, until C repeats. A cavitated node
+learns that it should carry pressure only from a pressurised neighbour, so the full-film
+region grows by one node per step: a cold start therefore begins from the solution on a
+coarser mesh (nested iteration), which leaves 1-3 steps on each mesh whatever its size.
+
+Nodes whose every face has k = 0 (a dry patch where k underflowed, H < -21) carry no film:
+they are held at p = 0 and reported as cavitated.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import splu
+
+from .mesh import Mesh
+
+# Hysteresis of the active-set update, relative to the scales of p and w: a node changes
+# side only when its multiplier or pressure is clearly of the wrong sign, so round-off near
+# the free boundary cannot make the set cycle.
+SET_TOLERANCE = 1e-12
+# The solution is reported converged when the active set repeated and the relative residual
+# (equations on pressurised nodes, complementarity elsewhere) is below this.
+RESIDUAL_TOLERANCE = 1e-8
+# Nested iteration for a cold start recurses to meshes with at most this many nodes a side.
+COARSEST_NODES = 33
+# Active-set steps a warm start gets before the solver falls back to the cold start.
+WARM_START_STEPS = 4
+
+
+@dataclass
+class ReynoldsSolution:
+    """Fluid pressure on the mesh and how it was reached."""
+
+    pressure: np.ndarray  # (ny, nx) Pa; 0 on the boundary and in the cavitated zone
+    cavitated: np.ndarray  # (ny, nx) bool; interior nodes held at p = 0 (boundary False)
+    iterations: int  # active-set steps (linear solves); 1 without cavitation
+    residual: float  # max relative residual: equations on pressurised nodes, complementarity
+    converged: bool
+
+
+@dataclass(frozen=True)
+class ReynoldsSystem:
+    """Discrete Reynolds equation A p = b on the unknown nodes (interior nodes with a film)."""
+
+    matrix: sp.csr_matrix  # (n, n) symmetric M-matrix, m^3/(Pa s)
+    rhs: np.ndarray  # (n,) m^3/s
+    unknown: np.ndarray  # (ny, nx) bool; the n unknowns in C order
+
+
+def _interior(shape: tuple[int, int], line: bool) -> np.ndarray:
+    interior = np.zeros(shape, dtype=bool)
+    if line:
+        interior[0, 1:-1] = True
+    else:
+        interior[1:-1, 1:-1] = True
+    return interior
+
+
+def _face_transmissibilities(mesh, coefficient):
+    """T of x faces (ny, nx-1) and y faces (ny-1, nx; empty in line mode), m^3/(Pa s)."""
+    tx = 0.5 * (coefficient[:, :-1] + coefficient[:, 1:]) * (mesh.dy / mesh.dx)
+    ty = 0.5 * (coefficient[:-1, :] + coefficient[1:, :]) * (mesh.dx / mesh.dy)
+    return tx, ty
+
+
+def _couette_face_flux(mesh, expected_gap, speed):
+    """Couette flux (U/2) h_T,f dy through each x face, m^3/s, (ny, nx-1)."""
+    return 0.5 * speed * 0.5 * (expected_gap[:, :-1] + expected_gap[:, 1:]) * mesh.dy
+
+
+def _check_fields(mesh, expected_gap, coefficient):
+    for name, field in (("expected_gap", expected_gap), ("coefficient", coefficient)):
+        if field.shape != mesh.shape:
+            raise ValueError(f"{name} has shape {field.shape}, the mesh {mesh.shape}")
+        if not np.all(np.isfinite(field)):
+            raise ValueError(f"{name} has non-finite values")
+    if np.any(coefficient < 0.0):
+        raise ValueError(f"Poiseuille coefficient must be >= 0; min {coefficient.min():.3g}")
+
+
+def reynolds_system(mesh, expected_gap, coefficient, speed) -> ReynoldsSystem:
+    """Assemble the finite-volume Reynolds equation (Eq. 1) without loops over nodes.
+
+    expected_gap = h_T (ny, nx) m, coefficient = k (ny, nx) m^3/(Pa s), speed = U m/s.
+    """
+    expected_gap = np.asarray(expected_gap, dtype=float)
+    coefficient = np.asarray(coefficient, dtype=float)
+    _check_fields(mesh, expected_gap, coefficient)
+    tx, ty = _face_transmissibilities(mesh, coefficient)
+
+    diagonal = np.zeros(mesh.shape)
+    diagonal[:, :-1] += tx
+    diagonal[:, 1:] += tx
+    diagonal[:-1, :] += ty
+    diagonal[1:, :] += ty
+    unknown = _interior(mesh.shape, mesh.line) & (diagonal > 0.0)
+    number = np.full(mesh.shape, -1)
+    n = int(unknown.sum())
+    number[unknown] = np.arange(n)
+
+    rows, cols, vals = [np.arange(n)], [np.arange(n)], [diagonal[unknown]]
+    for a, c, t in ((number[:, :-1], number[:, 1:], tx), (number[:-1, :], number[1:, :], ty)):
+        both = (a >= 0) & (c >= 0)
+        rows += [a[both], c[both]]
+        cols += [c[both], a[both]]
+        vals += [-t[both], -t[both]]
+    matrix = sp.csr_matrix(
+        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)
+    )
+
+    couette = _couette_face_flux(mesh, expected_gap, speed)
+    outflow = np.zeros(mesh.shape)
+    outflow[:, 1:-1] = couette[:, 1:] - couette[:, :-1]
+    return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown)
+
+
+def _solve_on(matrix, rhs, free):
+    """p with p = 0 off the free set and A_FF p_F = b_F on it."""
+    p = np.zeros(rhs.size)
+    if free.any():
+        sub = matrix[free][:, free].tocsc()
+        p[free] = splu(sub, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                       options={"SymmetricMode": True}).solve(rhs[free])
+    return p
+
+
+def _relative_residual(matrix, rhs, p, cavitated, cavitation):
+    """Max relative violation of: w = 0 on pressurised nodes; with cavitation also w >= 0 and
+    p = 0 on cavitated ones and p >= 0 everywhere (pressures turned into flux units by the
+    diagonal). Relative to the larger of |b| and |diag p|."""
+    w = matrix @ p - rhs
+    diagonal = matrix.diagonal()
+    scale = max(np.abs(rhs).max(initial=0.0), (diagonal * np.abs(p)).max(initial=0.0))
+    if scale == 0.0:  # no flow and no pressure: p = 0 solves the problem exactly
+        return 0.0
+    violation = np.where(cavitated, np.maximum(-w, 0.0) + diagonal * np.abs(p), np.abs(w))
+    if cavitation:
+        violation = np.maximum(violation, diagonal * np.maximum(-p, 0.0))
+    return float(violation.max(initial=0.0) / scale)
+
+
+def _coarser(mesh):
+    """The mesh with every other node (same domain) in each direction longer than
+    COARSEST_NODES, or None when no direction is."""
+    def halve(nodes):
+        if nodes.size <= COARSEST_NODES:
+            return nodes
+        return np.linspace(nodes[0], nodes[-1], (nodes.size + 1) // 2)
+
+    if mesh.nx <= COARSEST_NODES and (mesh.line or mesh.ny <= COARSEST_NODES):
+        return None
+    return Mesh(x=halve(mesh.x), y=mesh.y if mesh.line else halve(mesh.y), length=mesh.length)
+
+
+def _interpolate(field, source, target):
+    """Bilinear interpolation of a (ny, nx) field between meshes over the same domain."""
+    def along(values, nodes_from, nodes_to, axis):
+        if nodes_from.size == 1:
+            return values
+        i = np.clip(np.searchsorted(nodes_from, nodes_to, side="right") - 1, 0, nodes_from.size - 2)
+        t = np.clip((nodes_to - nodes_from[i]) / (nodes_from[i + 1] - nodes_from[i]), 0.0, 1.0)
+        shape = (-1, 1) if axis == 0 else (1, -1)
+        lower, upper = np.take(values, i, axis=axis), np.take(values, i + 1, axis=axis)
+        return lower + t.reshape(shape) * (upper - lower)
+
+    return along(along(field, source.x, target.x, 1), source.y, target.y, 0)
+
+
+def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations):
+    """Cavitated set guessed from the solution on the coarser mesh (nested iteration).
+
+    A cavitated node only learns that it should carry pressure from a pressurised neighbour,
+    so the active-set method grows the full-film region by one node per step: from a cold
+    start the step count grows with the mesh. Solving on coarser meshes first leaves the
+    free boundary a node or two to move on each level.
+    """
+    solution = solve_reynolds(
+        coarse,
+        _interpolate(expected_gap, mesh, coarse),
+        _interpolate(coefficient, mesh, coarse),
+        speed,
+        max_iterations=max_iterations,
+    )
+    return _interpolate(solution.pressure, coarse, mesh) <= 0.0
+
+
+def _active_set(matrix, rhs, cavitated, max_steps):
+    """Primal-dual active-set steps from the cavitated set ``cavitated`` (unknown-node mask):
+    (p, cavitated set of p, steps, whether the set repeated)."""
+    w_tol = SET_TOLERANCE * np.abs(rhs).max(initial=0.0)
+    for steps in range(1, max_steps + 1):
+        p = _solve_on(matrix, rhs, ~cavitated)
+        w = matrix @ p - rhs
+        p_tol = SET_TOLERANCE * np.abs(p).max(initial=0.0)
+        updated = np.where(cavitated, w >= -w_tol, p < -p_tol)
+        repeated = np.array_equal(updated, cavitated)
+        if repeated or steps == max_steps:
+            break
+        cavitated = updated
+    return p, cavitated, steps, repeated
+
+
+def _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations):
+    """Cavitated set to start from without a warm start: from the solution on a mesh with half
+    the nodes (recursively), and on the coarsest mesh the nodes where the gap diverges."""
+    coarse = _coarser(mesh)
+    if coarse is None:
+        return system.rhs < 0.0
+    return _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations)[system.unknown]
+
+
+def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
+                   cavitated_guess=None, max_iterations=100) -> ReynoldsSolution:
+    """Fluid pressure of Eq. (1) with p = 0 on the boundary.
+
+    cavitation=True: Reynolds (Swift-Stieber) condition by the primal-dual active-set method.
+    ``cavitated_guess`` (ny, nx) bool warm-starts it; a guess that has not settled within
+    WARM_START_STEPS steps (a free boundary far away creeps one node per step) is dropped for
+    the cold start: the solution on a mesh with half the nodes (recursively; on the coarsest
+    mesh the nodes where the gap diverges). ``iterations`` counts the steps on ``mesh``.
+    cavitation=False: full Sommerfeld, one linear solve, p may be negative.
+    """
+    if max_iterations < 1:
+        raise ValueError(f"max_iterations must be >= 1, got {max_iterations}")
+    expected_gap = np.asarray(expected_gap, dtype=float)
+    coefficient = np.asarray(coefficient, dtype=float)
+    system = reynolds_system(mesh, expected_gap, coefficient, speed)
+    matrix, rhs = system.matrix, system.rhs
+    if not cavitation:
+        cavitated = np.zeros(rhs.size, dtype=bool)
+        p = _solve_on(matrix, rhs, ~cavitated)
+        iterations, repeated = 1, True
+    else:
+        iterations, repeated = 0, False
+        if cavitated_guess is not None:
+            warm = np.asarray(cavitated_guess, dtype=bool)[system.unknown]
+            p, cavitated, iterations, repeated = _active_set(
+                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations)
+            )
+        if not repeated and iterations < max_iterations:
+            cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations)
+            p, cavitated, steps, repeated = _active_set(matrix, rhs, cold, max_iterations - iterations)
+            iterations += steps
+    residual = _relative_residual(matrix, rhs, p, cavitated, cavitation)
+
+    pressure = np.zeros(mesh.shape)
+    pressure[system.unknown] = p
+    cavitated_field = _interior(mesh.shape, mesh.line) & ~system.unknown
+    cavitated_field[system.unknown] = cavitated
+    return ReynoldsSolution(
+        pressure=pressure,
+        cavitated=cavitated_field,
+        iterations=iterations,
+        residual=residual,
+        converged=bool(repeated and residual <= RESIDUAL_TOLERANCE),
+    )
+
+
+def boundary_flux(mesh, solution, expected_gap, coefficient, speed) -> float:
+    """Net volumetric outflow of the full-film region, m^3/s: through the domain boundary plus
+    into the cavitated region. Zero for a mass-conserving solution.
+
+    Evaluated from the face fluxes q_f = T_f (p_left - p_right) + (U/2) h_T,f dy of the faces
+    between a pressurised interior node and a node that is not (boundary or cavitated),
+    independently of the assembled matrix. Compare it with the inlet flux (U/2) h_T dy.
+    """
+    expected_gap = np.asarray(expected_gap, dtype=float)
+    coefficient = np.asarray(coefficient, dtype=float)
+    _check_fields(mesh, expected_gap, coefficient)
+    p = solution.pressure
+    full = _interior(mesh.shape, mesh.line) & ~solution.cavitated
+    tx, ty = _face_transmissibilities(mesh, coefficient)
+    qx = tx * (p[:, :-1] - p[:, 1:]) + _couette_face_flux(mesh, expected_gap, speed)
+    qy = ty * (p[:-1, :] - p[1:, :])
+    total = 0.0
+    for q, left, right in ((qx, full[:, :-1], full[:, 1:]), (qy, full[:-1, :], full[1:, :])):
+        total += q[left & ~right].sum() - q[right & ~left].sum()
+    return float(total)
