@@ -1,0 +1,89 @@
+"""The Dataset of one operating point (DESIGN.md "Output of one case"), CF-style attrs."""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from . import __version__
+
+# name: (units, long_name). Every variable a case writes is listed here, so that no
+# quantity leaves the model without its unit.
+SCALARS = {
+    "contact_resistance": ("ohm", "electrical contact resistance (Eqs. 15-17, nodes in parallel)"),
+    "friction_coefficient": ("1", "friction coefficient (boundary friction of solid load + fluid shear) / applied force"),
+    "fluid_force": ("N", "load carried by the fluid film (Eq. 5)"),
+    "contact_force": ("N", "load carried by asperity contact (Eq. 11 summed over nodes)"),
+    "applied_force": ("N", "applied normal force F (Eq. 18)"),
+    "fluid_load_fraction": ("1", "fluid force / (fluid force + contact force)"),
+    "min_film_thickness": ("m", "minimum mean-plane separation h over the mesh (may be negative)"),
+    "central_film_thickness": ("m", "mean-plane separation h at x = 0, y = 0 (may be negative)"),
+    "separation": ("m", "vertical position z of the cylinder (Eq. 3)"),
+    "real_contact_area": ("m2", "real area of asperity contact (Eq. 15 integrand, summed over nodes)"),
+    "converged": ("1", "1 if the coupled solve met its tolerances, else 0"),
+    "iterations": ("1", "outer (deformation) iterations of the coupled solve"),
+    "force_residual": ("N", "applied force minus fluid and contact forces (Eq. 18)"),
+    "deformation_residual": ("m", "last change of the deformation field in the coupling loop (max norm)"),
+    "reynolds_residual": ("1", "relative residual of the discrete Reynolds complementarity problem"),
+    "solve_time": ("s", "wall time of the solve, model assembly included"),
+    "open_circuit": ("1", "1 if no conducting contact is representable (resistance is +inf)"),
+    "clamped_nodes": ("1", "nodes where A_r/A_n was clamped for the alleviation factor (Eq. 16)"),
+    "speed": ("m s-1", "sliding speed U of the block"),
+}
+
+FIELDS = {
+    "fluid_pressure": ("Pa", "fluid film pressure p (Eq. 1)"),
+    "contact_pressure": ("Pa", "nominal asperity contact pressure (Eq. 11 per nominal area)"),
+    "film_thickness": ("m", "mean-plane separation h = h_o + z + delta (Eq. 3)"),
+    "deformation": ("m", "macro elastic deformation delta of both surfaces (influence coefficients)"),
+}
+
+INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes")
+
+
+def _attrs(table, name):
+    units, long_name = table[name]
+    return {"units": units, "long_name": long_name}
+
+
+def case_dataset(scene, scalars: dict, fields: dict | None, mesh, effects_run: dict, notes: str = "") -> xr.Dataset:
+    """Assemble one case's Dataset. ``scalars`` must hold exactly the keys of SCALARS."""
+    missing = set(SCALARS) - set(scalars)
+    if missing:
+        raise KeyError(f"case output lacks {sorted(missing)}")
+    data_vars = {}
+    for name, value in scalars.items():
+        dtype = np.int32 if name in INTEGER_SCALARS else np.float64
+        data_vars[name] = xr.Variable((), np.asarray(value, dtype=dtype), _attrs(SCALARS, name))
+    coords = {}
+    if fields:
+        coords["x"] = xr.Variable(("x",), mesh.x, {"units": "m", "long_name": "position along sliding (inlet at x_min)"})
+        coords["y"] = xr.Variable(("y",), mesh.y, {"units": "m", "long_name": "position along the cylinder axis"})
+        for name, value in fields.items():
+            data_vars[name] = xr.Variable(("y", "x"), np.asarray(value, dtype=np.float64), _attrs(FIELDS, name))
+    attrs = {
+        "title": "lubecontact case: one operating point of a lubricated rough electrical contact",
+        "Conventions": "CF-1.10",
+        "scene": scene.canonical_yaml(),
+        "scene_hash": scene.hash,
+        "lubecontact_version": __version__,
+        "effects_run": ",".join(k for k, v in effects_run.items() if v) or "none",
+        "notes": notes,
+    }
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def write_case(dataset: xr.Dataset, path) -> None:
+    """Write atomically: a killed process never leaves a file that looks complete."""
+    import os
+    from pathlib import Path
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        dataset.to_netcdf(tmp)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()

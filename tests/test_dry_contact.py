@@ -1,0 +1,102 @@
+"""Dry contact (hydrodynamics off): force balance of Eq. (18) with F_fluid = 0, against
+Hertz line contact (Johnson 1985 Ch. 4; physics.md section 6) and physical trends."""
+
+import numpy as np
+import pytest
+
+import lubecontact as lc
+
+TABLE1 = "config/scenes/table1.yaml"
+
+
+def dry(**overrides):
+    base = {"effects.hydrodynamics": False}
+    base.update(overrides)
+    return lc.load_scene(TABLE1, base)
+
+
+def test_force_balance_residual_below_1e_8_of_the_load():
+    ds = lc.solve(dry(**{"solver.tolerance": 1e-10}))
+    assert ds["converged"].item() == 1
+    assert abs(ds["force_residual"].item()) <= 1e-8 * 5.0
+    assert ds["contact_force"].item() == pytest.approx(5.0, rel=1e-8)
+    assert ds["fluid_force"].item() == 0.0
+
+
+def test_resistance_falls_and_area_grows_as_force_rises():
+    forces = [0.5, 2.0, 5.0, 20.0]
+    results = [lc.solve(dry(**{"operating.force": f, "mesh.nx": 31, "mesh.ny": 11})) for f in forces]
+    resistance = [r["contact_resistance"].item() for r in results]
+    area = [r["real_contact_area"].item() for r in results]
+    assert all(r["converged"].item() == 1 for r in results)
+    assert np.all(np.diff(resistance) < 0)
+    assert np.all(np.diff(area) > 0)
+
+
+def hertz_moments(ds):
+    """Peak pressure and half-width b from the second moment (Hertz: <x^2> = b^2/4)."""
+    p = ds["contact_pressure"].values[0]
+    x = ds["x"].values
+    load = np.trapezoid(p, x)
+    b = 2.0 * np.sqrt(np.trapezoid(p * x**2, x) / load)
+    return p.max(), b
+
+
+@pytest.mark.parametrize(
+    "block_modulus, p0_expected, b_expected",
+    [
+        (41.4e9, 61.52e6, 51.74e-6),  # tin on tin: E* = 23.78 GPa (Johnson's convention)
+        (1e15, 87.01e6, 36.58e-6),  # rigid block: E* = E/(1-nu^2), the paper's 87 MPa
+    ],
+)
+def test_smooth_elastic_cylinder_matches_hertz_line_contact(block_modulus, p0_expected, b_expected):
+    # Nearly smooth, elastic asperities (a stiff contact law), line contact, fine mesh.
+    # eta R sigma kept at Table 1's 0.05 so that y_s of Eq. (13) stays ~0.92 sigma.
+    scene = dry(**{
+        "roughness.sigma": 5e-10, "roughness.asperity_density": 1e12, "effects.plasticity": False, "block.youngs_modulus": block_modulus,
+        "mesh.ny": 1, "mesh.nx": 401, "mesh.x_min": -1.2e-4, "mesh.x_max": 1.2e-4, "solver.tolerance": 1e-8,
+    })
+    ds = lc.solve(scene, fields=True)
+    assert ds["converged"].item() == 1
+    p0, b = hertz_moments(ds)
+    assert p0 == pytest.approx(p0_expected, rel=0.02)
+    assert b == pytest.approx(b_expected, rel=0.02)
+
+
+def test_rigid_dry_contact_equals_the_rough_law_without_deformation():
+    # elastic_deformation off: the film is the undeformed gap plus z, node by node (Eqs. 3-4).
+    scene = dry(**{"effects.elastic_deformation": False, "mesh.nx": 31, "mesh.ny": 11})
+    ds = lc.solve(scene, fields=True)
+    assert ds["iterations"].item() == 1
+    radius = 0.01
+    x = ds["x"].values
+    film = ds["film_thickness"].values
+    undeformed = radius - np.sqrt(radius**2 - x**2)
+    np.testing.assert_allclose(film - ds["separation"].item(), np.broadcast_to(undeformed, film.shape), atol=1e-15)
+    assert np.all(ds["deformation"].values == 0.0)
+
+
+def test_cli_solve_writes_a_converged_dry_case(tmp_path):
+    from lubecontact.cli import main
+
+    out = tmp_path / "x.nc"
+    code = main(["solve", TABLE1, "--set", "effects.hydrodynamics=false", "--fields", "--out", str(out)])
+    assert code == 0
+    import xarray as xr
+
+    with xr.open_dataset(out) as ds:
+        assert ds["converged"].item() == 1
+        assert ds["contact_force"].item() == pytest.approx(5.0, rel=1e-6)
+        assert 0 < ds["contact_resistance"].item() < 1.0
+        assert ds["contact_pressure"].attrs["units"] == "Pa"
+        assert ds.attrs["scene_hash"] == dry().hash
+
+
+def test_cli_bad_input_exits_2_and_writes_nothing(tmp_path, capsys):
+    from lubecontact.cli import main
+
+    out = tmp_path / "x.nc"
+    code = main(["solve", TABLE1, "--set", "roughness.sigma=-1e-6", "--out", str(out)])
+    assert code == 2
+    assert not out.exists()
+    assert "roughness.sigma" in capsys.readouterr().err
