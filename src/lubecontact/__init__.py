@@ -25,11 +25,11 @@ def __getattr__(name):
 
         return solve
     if name == "sweep":
-        from .sweep import sweep
+        from .speed_sweep import sweep
 
         return sweep
     if name == "rough_contact":
-        from .rough_contact import rough_contact
+        from .rough_surface import rough_contact
 
         return rough_contact
     raise AttributeError(f"module 'lubecontact' has no attribute {name!r}")

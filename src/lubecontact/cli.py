@@ -87,7 +87,7 @@ def main(argv=None) -> int:
 
         ds = solve(scene, fields=args.fields)
     else:
-        from .sweep import sweep
+        from .speed_sweep import sweep
 
         ds = sweep(scene, speeds)
     write_case(ds, args.out)

@@ -10,6 +10,10 @@ Under the Reynolds cavitation condition the film ruptures where p returns to zer
 dp/dx = 0; beyond it the lubricant flows as Couette streamers carrying the rupture flux
 U h_T*/2, so only the fraction theta = h_T*/h_T of the gap is wetted and the Couette shear
 there is scaled by theta (row by row in y). Upstream of the pressure peak the film is full.
+
+Where the rough surfaces are in contact (h < 0) h_T -> 0 and mu U/h_T would diverge; the
+lubricant there is held in the valleys between contacting asperities, so the Couette gap is
+floored at h_T(0) = sigma/sqrt(2 pi), the expected gap of two surfaces whose mean planes meet.
 """
 
 from __future__ import annotations
@@ -36,11 +40,13 @@ def wetted_fraction(expected_gap: np.ndarray, pressure: np.ndarray, cavitated: n
     return theta
 
 
-def fluid_shear_force(mesh, expected_gap, pressure, cavitated, viscosity: float, speed: float) -> float:
-    """int tau dA over the mesh, in N (positive: resists the sliding of the block)."""
+def fluid_shear_force(mesh, expected_gap, pressure, cavitated, viscosity: float, speed: float, sigma: float | None) -> float:
+    """int tau dA over the mesh, in N (positive: resists the sliding of the block).
+    ``sigma`` None means smooth surfaces (no valley floor on the Couette gap)."""
     dpdx = np.gradient(pressure, mesh.x, axis=1)
     theta = wetted_fraction(expected_gap, pressure, cavitated)
-    tau = theta * viscosity * speed / expected_gap + 0.5 * expected_gap * dpdx * (~cavitated)
+    couette_gap = expected_gap if sigma is None else np.maximum(expected_gap, sigma / np.sqrt(2.0 * np.pi))
+    tau = theta * viscosity * speed / couette_gap + 0.5 * expected_gap * dpdx * (~cavitated)
     return float(np.sum(tau * mesh.nodal_area))
 
 

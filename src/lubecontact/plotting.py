@@ -1,0 +1,171 @@
+"""Figures 3-11 of Jackson & Angadi (2022) drawn from a collected figure Dataset.
+
+The input is ``results/data/figNN.nc`` (``lubecontact.grid.collect``): a quantity over the
+swept dimensions and ``speed``. One curve is drawn per combination of the swept
+dimensions, in one panel per x quantity: the sliding speed U (Figs. 3-11), the Stribeck
+normalisation U/F (Figs. 8-9) or the Hersey number mu U/F (Figs. 10-11).
+
+Nothing is hidden: a point that did not converge (``converged`` = 0) gets a red cross; a
+point whose value is +inf (``contact_resistance`` of an open circuit) is drawn as a
+triangle on the top edge of the panel, where the value leaves the axis. A NaN is an error.
+
+Library code: uses matplotlib's object API (no pyplot state), reads no files.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+
+# x quantities: name -> (long_name, CF units, function of the figure Dataset)
+X_QUANTITIES = {
+    "speed": ("sliding speed U", "m s-1", lambda ds: ds["speed"]),
+    "speed_per_force": ("Stribeck normalisation U/F", "m s-1 N-1", lambda ds: ds["speed"] / ds["force"]),
+    "hersey": ("Hersey number \u03bcU/F", "m-1", lambda ds: ds["viscosity"] * ds["speed"] / ds["force"]),
+}
+
+# CF units -> how an axis label writes them
+UNIT_LABELS = {
+    "ohm": "\u03a9",
+    "m s-1": "m/s",
+    "m s-1 N-1": "m/(s N)",
+    "m-1": "1/m",
+    "m-2": "1/m\u00b2",
+    "m2": "m\u00b2",
+    "ohm m": "\u03a9 m",
+    "1": "\u2013",
+}
+
+# display unit in a legend -> (CF units of the coordinate, size of one display unit in them)
+DISPLAY_UNITS = {
+    "m": ("m", 1.0),
+    "mm": ("m", 1e-3),
+    "\u00b5m": ("m", 1e-6),
+    "um": ("m", 1e-6),
+    "nm": ("m", 1e-9),
+    "N": ("N", 1.0),
+    "mN": ("N", 1e-3),
+    "Pa s": ("Pa s", 1.0),
+    "mPa s": ("Pa s", 1e-3),
+    "m/s": ("m s-1", 1.0),
+}
+
+NOT_CONVERGED_STYLE = {"marker": "x", "color": "tab:red", "markersize": 8, "markeredgewidth": 1.6, "linestyle": "none"}
+OPEN_STYLE = {"marker": "^", "markersize": 7, "linestyle": "none", "clip_on": False}
+
+
+def unit_label(units: str) -> str:
+    return UNIT_LABELS.get(units, units)
+
+
+def axis_label(long_name: str, units: str) -> str:
+    """'name (unit)'; a long_name's own parenthetical remark (equation numbers) is left out."""
+    return f"{long_name.split(' (')[0]} ({unit_label(units)})"
+
+
+def x_quantity(ds: xr.Dataset, name: str) -> xr.DataArray:
+    """The x values of a panel, with units and long_name."""
+    if name not in X_QUANTITIES:
+        raise ValueError(f"unknown x quantity {name!r}; allowed: {', '.join(X_QUANTITIES)}")
+    long_name, units, f = X_QUANTITIES[name]
+    return f(ds).assign_attrs(units=units, long_name=long_name)
+
+
+def _display(ds: xr.Dataset, coord: str, unit: str | None) -> float:
+    """A 0-d coordinate in the display unit (its own unit when None)."""
+    value = ds[coord].values.item()
+    if unit is None:
+        return value
+    if unit not in DISPLAY_UNITS:
+        raise ValueError(f"legend unit {unit!r} for {coord}: allowed {', '.join(DISPLAY_UNITS)}")
+    base, size = DISPLAY_UNITS[unit]
+    if ds[coord].attrs.get("units") != base:
+        raise ValueError(f"legend unit {unit!r} does not fit {coord} in {ds[coord].attrs.get('units')!r}")
+    return value / size
+
+
+def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
+    """The figure of ``plot`` = {y, x: [quantities], xscale, yscale, legend} from ``ds``."""
+    y_name = plot["y"]
+    y = ds[y_name]
+    values = y.values
+    if np.isnan(values).any():
+        bad = ds["case_id"].values[np.isnan(values)]
+        raise ValueError(f"{y_name} is NaN in case(s) {', '.join(bad)}: the solver must not return NaN")
+    if np.isneginf(values).any():
+        raise ValueError(f"{y_name} is -inf somewhere; only +inf (open circuit) can be drawn")
+    dims = [d for d in y.dims if d != "speed"]
+    swept = [c for c in ds.coords if ds[c].ndim == 1 and ds[c].dims[0] in dims]
+    panels = list(plot["x"])
+    fig = Figure(figsize=(4.8 * len(panels) + 1.0, 4.2), layout="constrained")
+    axes = fig.subplots(1, len(panels), squeeze=False, sharey=True)[0]
+    shape = [ds.sizes[d] for d in dims]
+    n_curves = int(np.prod(shape)) if shape else 1
+    colours = _colours(n_curves)
+    marks = {"not converged": False, "open": False}
+    for ax, x_name in zip(axes, panels):
+        x_all = x_quantity(ds, x_name)
+        x_all, y_all = xr.broadcast(x_all, y)
+        for k, index in enumerate(np.ndindex(*shape)):
+            at = dict(zip(dims, index))
+            curve = ds.isel(at)
+            xs = x_all.isel(at).transpose("speed").values
+            ys = y_all.isel(at).transpose("speed").values
+            finite = np.isfinite(ys)
+            label = _label(curve, swept, plot.get("legend")) if dims else None
+            ax.plot(xs, np.where(finite, ys, np.nan), marker="o", markersize=3, color=colours[k], label=label)
+            failed = curve["converged"].transpose("speed").values == 0
+            if (failed & finite).any():
+                ax.plot(xs[failed & finite], ys[failed & finite], **NOT_CONVERGED_STYLE)
+                marks["not converged"] = True
+            if (~finite).any():
+                top = ax.get_xaxis_transform()
+                ax.plot(xs[~finite], np.ones((~finite).sum()), transform=top, color=colours[k], **OPEN_STYLE)
+                if (failed & ~finite).any():
+                    ax.plot(xs[failed & ~finite], np.ones((failed & ~finite).sum()), transform=top, clip_on=False, **NOT_CONVERGED_STYLE)
+                marks["open"] = True
+        ax.set_xscale(plot.get("xscale", "log"))
+        ax.set_yscale(plot.get("yscale", "log"))
+        ax.set_xlabel(axis_label(x_all.attrs["long_name"], x_all.attrs["units"]))
+        ax.grid(True, which="major", alpha=0.3)
+    axes[0].set_ylabel(axis_label(y.attrs["long_name"], y.attrs["units"]))
+    handles, labels = axes[-1].get_legend_handles_labels()
+    if marks["not converged"]:
+        handles.append(Line2D([], [], **NOT_CONVERGED_STYLE))
+        labels.append("not converged")
+    if marks["open"]:
+        handles.append(Line2D([], [], color="0.3", **OPEN_STYLE))
+        labels.append(f"{y_name.replace('_', ' ')} = \u221e (open circuit), at top edge")
+    if handles:
+        legend = plot.get("legend") or {}
+        axes[-1].legend(handles, labels, title=legend.get("title"), fontsize="small", title_fontsize="small")
+    if title:
+        fig.suptitle(title, fontsize="medium")
+    return fig
+
+
+def _colours(n: int) -> list:
+    from matplotlib import colormaps
+
+    cmap = colormaps["viridis"]
+    return [cmap(0.85 * k / max(n - 1, 1)) for k in range(n)]
+
+
+def _label(curve: xr.Dataset, swept: Sequence[str], legend: Mapping | None) -> str:
+    """Legend text of one curve: ``legend['label']`` formatted with the curve's swept
+    coordinates (converted to ``legend['units']``), else 'name = value unit' each."""
+    if legend and legend.get("label"):
+        units = legend.get("units") or {}
+        return legend["label"].format(**{c: _display(curve, c, units.get(c)) for c in swept})
+    return ", ".join(f"{c} = {curve[c].values.item():g} {unit_label(curve[c].attrs.get('units', ''))}" for c in swept)
+
+
+def save(fig: Figure, paths: Sequence) -> None:
+    """Write the figure to each path (format from the suffix); PDFs without a date stamp."""
+    for path in paths:
+        metadata = {"CreationDate": None} if str(path).endswith(".pdf") else None
+        fig.savefig(path, dpi=150, metadata=metadata)

@@ -1,0 +1,153 @@
+"""The lubricated, coupled solve (Eqs. 1-18) against independent truths: Martin's rigid
+cylinder, the isoviscous-elastic line contact (physics.md section 5), symmetry, the
+paper's qualitative findings, and the hard cases of the stability suite."""
+
+import numpy as np
+import pytest
+
+import lubecontact as lc
+
+TABLE1 = "config/scenes/table1.yaml"
+SCALARS = ["contact_resistance", "friction_coefficient", "fluid_force", "contact_force", "min_film_thickness"]
+
+
+def scene(**overrides):
+    return lc.load_scene(TABLE1, overrides)
+
+
+def test_rigid_smooth_line_contact_carries_martins_load():
+    # Martin 1916 with the Reynolds condition: w' = 4.895 mu u_m R / h_min, u_m = U/2.
+    speed, force, mu, radius, length = 0.1, 5.0, 0.1, 0.01, 1e-3
+    h0 = 4.895 * mu * 0.5 * speed * radius * length / force
+    inlet = np.sqrt(2 * radius * h0)
+    ds = lc.solve(scene(**{
+        "effects.asperity_contact": False, "effects.elastic_deformation": False,
+        "mesh.ny": 1, "mesh.nx": 2001, "mesh.x_min": -40 * inlet, "mesh.x_max": 2 * inlet,
+    }))
+    assert ds["converged"].item() == 1
+    assert ds["min_film_thickness"].item() == pytest.approx(h0, rel=0.02)
+    assert ds["contact_force"].item() == 0.0
+
+
+@pytest.mark.parametrize(
+    "speed, h_min, h_c, x_range",
+    [
+        # physics.md section 9 (E'_H = 47.56 GPa): reference solver, 1000-1600 nodes, ~1 % grid error
+        (0.01, 20.9e-9, 26.6e-9, (-2.5e-4, 1e-4)),
+        (0.1, 93.5e-9, 117e-9, (-4e-4, 1.5e-4)),
+        (1.0, 0.559e-6, 0.575e-6, (-1.2e-3, 4e-4)),
+    ],
+)
+def test_smooth_elastic_line_contact_matches_isoviscous_elastic_films(speed, h_min, h_c, x_range):
+    ds = lc.solve(scene(**{
+        "effects.asperity_contact": False, "operating.speed": speed,
+        "mesh.ny": 1, "mesh.nx": 401, "mesh.x_min": x_range[0], "mesh.x_max": x_range[1],
+    }))
+    assert ds["converged"].item() == 1
+    assert ds["min_film_thickness"].item() == pytest.approx(h_min, rel=0.03)
+    assert ds["central_film_thickness"].item() == pytest.approx(h_c, rel=0.03)
+
+
+def test_elastic_film_is_thicker_than_rigid_at_moderate_load():
+    # g_E = 3.24 at 0.1 m/s: deformation opens the conjunction (H_min 9.35 against Martin's 4.9).
+    common = {"effects.asperity_contact": False, "operating.speed": 0.1, "mesh.ny": 1, "mesh.nx": 401,
+              "mesh.x_min": -4e-4, "mesh.x_max": 1.5e-4}
+    rigid = lc.solve(scene(**common, **{"effects.elastic_deformation": False}))
+    elastic = lc.solve(scene(**common))
+    assert elastic["min_film_thickness"].item() > 1.5 * rigid["min_film_thickness"].item()
+
+
+def test_finite_cylinder_is_symmetric_in_y():
+    ds = lc.solve(scene(**{"operating.speed": 0.1, "mesh.nx": 31, "mesh.ny": 21}), fields=True)
+    for name in ("fluid_pressure", "contact_pressure", "film_thickness"):
+        field = ds[name].values
+        np.testing.assert_allclose(field, field[::-1, :], rtol=1e-7, atol=1e-9 * np.abs(field).max())
+
+
+def test_cold_start_equals_continuation():
+    s = scene(**{"mesh.nx": 31, "mesh.ny": 11})
+    speeds = [1e-3, 1e-2, 1e-1, 1.0]
+    swept = lc.sweep(s, speeds, progress=False)
+    for i, speed in enumerate(speeds):
+        cold = lc.solve(s.replace({"operating.speed": speed}))
+        for name in SCALARS:
+            assert swept[name].values[i] == pytest.approx(cold[name].item(), rel=1e-4, abs=1e-12)
+
+
+def test_table1_sweep_resistance_rises_by_orders_and_friction_falls_then_levels():
+    speeds = np.geomspace(1e-4, 10, 7)
+    ds = lc.sweep(scene(**{"mesh.nx": 31, "mesh.ny": 15}), speeds, progress=False)
+    assert np.all(ds["converged"].values == 1)
+    resistance = ds["contact_resistance"].values
+    assert np.all(np.diff(resistance) > 0)
+    assert resistance[-1] / resistance[0] > 1e3
+    friction = ds["friction_coefficient"].values
+    assert friction[0] == pytest.approx(0.1, rel=0.02)  # boundary friction carries the load at low speed
+    assert friction.min() < 0.5 * friction[0]
+    assert ds["fluid_load_fraction"].values[-1] > 0.99
+
+
+@pytest.mark.parametrize(
+    "key, low, high, resistance_rises",
+    [
+        ("roughness.sigma", 0.25e-6, 1e-6, False),  # rougher -> lower resistance (Fig. 4)
+        ("geometry.radius", 0.005, 0.02, True),  # larger radius -> more lift (Fig. 6)
+        ("operating.force", 2.0, 10.0, False),  # more force -> lower resistance (Fig. 8)
+        ("lubricant.viscosity", 0.05, 0.2, True),  # more viscous -> higher resistance (Fig. 10)
+    ],
+)
+def test_papers_qualitative_findings(key, low, high, resistance_rises):
+    base = {"operating.speed": 0.1, "mesh.nx": 31, "mesh.ny": 11}
+    r_low = lc.solve(scene(**base, **{key: low}))["contact_resistance"].item()
+    r_high = lc.solve(scene(**base, **{key: high}))["contact_resistance"].item()
+    assert (r_high > r_low) == resistance_rises
+
+
+def test_non_convergence_is_reported_and_the_cli_exits_3(tmp_path):
+    from lubecontact.cli import main
+
+    s = scene(**{"solver.max_iterations": 1, "mesh.nx": 21, "mesh.ny": 11})
+    ds = lc.solve(s)
+    assert ds["converged"].item() == 0
+    out = tmp_path / "case.nc"
+    code = main(["solve", TABLE1, "--set", "solver.max_iterations=1", "--set", "mesh.nx=21", "--set", "mesh.ny=11",
+                 "--out", str(out)])
+    assert code == 3
+    assert out.exists()
+
+
+HARD = [
+    ("roughness.sigma", 0.05e-6), ("roughness.sigma", 5e-6),
+    ("operating.force", 0.05), ("operating.force", 500.0),
+    ("lubricant.viscosity", 1e-3), ("lubricant.viscosity", 10.0),
+    ("geometry.radius", 1e-3), ("geometry.radius", 1.0),
+]
+HARD_SPEEDS = [1e-6, 1e-3, 1e-1, 10.0, 100.0]
+
+
+def assert_stable_curve(ds):
+    """Converged, balanced, finite (or flagged open), never NaN, monotone in speed."""
+    force = ds["applied_force"].values
+    assert np.all(ds["converged"].values == 1)
+    assert np.all(np.abs(ds["force_residual"].values) <= 1e-6 * force)
+    for name in ds.data_vars:
+        assert not np.any(np.isnan(ds[name].values)), name
+    resistance = ds["contact_resistance"].values
+    assert np.all(resistance >= 0)
+    assert np.all(np.isfinite(resistance) | (ds["open_circuit"].values == 1))
+    assert np.all(resistance[1:] >= resistance[:-1]), resistance
+    assert np.all(np.diff(ds["fluid_load_fraction"].values) >= -1e-9)
+    assert np.all(np.diff(ds["real_contact_area"].values) <= 1e-20)
+
+
+@pytest.mark.parametrize("key, value", HARD, ids=[f"{k}={v:g}" for k, v in HARD])
+def test_hard_cases_stay_numerically_stable(key, value):
+    s = scene(**{key: value, "mesh.nx": 21, "mesh.ny": 11, "solver.tolerance": 1e-7})
+    assert_stable_curve(lc.sweep(s, HARD_SPEEDS, warm_start=False, progress=False))
+
+
+@pytest.mark.parametrize("nodes", [11, 101, 201], ids=lambda n: f"{n}x{n}")
+def test_hard_cases_meshes_stay_numerically_stable(nodes):
+    speeds = HARD_SPEEDS if nodes < 200 else [1e-3, 1.0]
+    s = scene(**{"mesh.nx": nodes, "mesh.ny": nodes, "solver.tolerance": 1e-7})
+    assert_stable_curve(lc.sweep(s, speeds, progress=False))
