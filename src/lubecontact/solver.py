@@ -337,11 +337,17 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     from .output import case_dataset
 
     start = time.perf_counter()
+    notes = []
+    requested = scene
+    if scene.effects.auto:
+        from .effects import resolve_auto_effects
+
+        scene, reasons = resolve_auto_effects(scene)
+        notes.append("effects: auto -> " + "; ".join(f"{k}: {v}" for k, v in reasons.items()))
     model = Model.assemble(scene)
     state, diag = coupled_solve(model, initial)
     mesh = model.mesh
     area = mesh.nodal_area
-    notes = []
     if model.contact is not None:
         area_fraction = model.contact.area_fraction(state.film)
         resistance, clamped = contact_resistance(
@@ -389,7 +395,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
             "film_thickness": state.film,
             "deformation": state.delta,
         }
-    ds = case_dataset(scene, scalars, field_data, mesh, model.effects_run, "; ".join(notes))
+    ds = case_dataset(requested, scalars, field_data, mesh, model.effects_run, "; ".join(notes))
     if return_state:
         return ds, state
     return ds
