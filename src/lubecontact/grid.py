@@ -32,6 +32,8 @@ import yaml
 # Keys of a figure YAML that define its cases (``grid: figXX`` borrows exactly these).
 GRID_KEYS = ("scene", "set", "sweep", "speeds", "max_nodes")
 SPEED_KEY = "operating.speed"
+# ``max_nodes`` leaves out the values of a swept dimension that sets these (fine meshes).
+MESH_KEYS = {"mesh.nx", "mesh.ny"}
 # Scene values the figures normalise by (Stribeck U/F, Hersey mu U/F): every collected
 # Dataset carries them as coordinates, along their dimension when swept, else as scalars.
 RECORDED_KEYS = ("operating.force", "lubricant.viscosity")
@@ -73,14 +75,17 @@ def merge(base: Mapping, override: Mapping) -> dict:
     return out
 
 
-def figure_spec(figure: str, figure_dir, overrides: Mapping | None = None, _seen: tuple = ()) -> dict:
+def figure_spec(figure: str, figure_dir, overrides: Mapping | None = None) -> dict:
     """The figure's YAML deep-merged with ``overrides[figure]`` (the workflow config).
 
     ``grid: figXX`` makes the figure plot the cases of figXX: its grid keys are taken from
     figXX, itself resolved the same way (so an override of figXX reaches both figures).
     """
-    overrides = overrides or {}
-    path = Path(figure_dir) / f"{figure}.yaml"
+    return _resolve(figure, Path(figure_dir), overrides or {}, ())
+
+
+def _resolve(figure: str, figure_dir: Path, overrides: Mapping, referrers: tuple) -> dict:
+    path = figure_dir / f"{figure}.yaml"
     if not path.is_file():
         raise GridError(f"{figure}: no grid file {path}")
     raw = read_yaml(path) or {}
@@ -89,12 +94,12 @@ def figure_spec(figure: str, figure_dir, overrides: Mapping | None = None, _seen
     spec = merge(raw, overrides.get(figure) or {})
     parent = spec.get("grid")
     if parent is not None:
-        if parent in _seen + (figure,):
+        if parent in referrers + (figure,):
             raise GridError(f"{path}: 'grid: {parent}' refers back to itself")
         own = sorted(k for k in GRID_KEYS if k in spec)
         if own:
             raise GridError(f"{path}: 'grid: {parent}' borrows the grid of {parent}; remove {', '.join(own)}")
-        borrowed = figure_spec(parent, figure_dir, overrides, _seen + (figure,))
+        borrowed = _resolve(parent, figure_dir, overrides, referrers + (figure,))
         spec.update({k: borrowed[k] for k in GRID_KEYS if k in borrowed})
     return spec
 
@@ -193,7 +198,6 @@ class FigureGrid:
                 recorded[name] = {"value": key_value(self.base, key), "attrs": key_attrs(self.base, key)}
         return {
             "figure": self.figure,
-            "title": str(self.spec.get("title", "")),
             "dims": [
                 {
                     "name": d.name,
@@ -281,7 +285,7 @@ def expand(figure: str, spec: Mapping, root=".") -> FigureGrid:
         for entry in entries:
             point = dict(zip(keys, entry))
             scene = _scene(base, point, f"{where}, {name} = {point}")
-            if max_nodes is not None and scene.mesh.nx * scene.mesh.ny > max_nodes:
+            if max_nodes is not None and MESH_KEYS & set(keys) and scene.mesh.nx * scene.mesh.ny > max_nodes:
                 continue
             typed.append(tuple(key_value(scene, k) for k in keys))
         if not typed:
@@ -444,7 +448,7 @@ def collect(layout: Mapping, open_case: Callable[[str], object]):
         data_vars,
         coords=coords,
         attrs={
-            "title": layout["title"] or f"lubecontact {layout['figure']}",
+            "title": f"lubecontact cases of {layout['figure']} over {', '.join(dims)}",
             "Conventions": "CF-1.10",
             "figure": layout["figure"],
             "base_scene": layout["base_scene"],

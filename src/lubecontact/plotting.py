@@ -104,8 +104,7 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     fig = Figure(figsize=(4.8 * len(panels) + 1.0, 4.2), layout="constrained")
     axes = fig.subplots(1, len(panels), squeeze=False, sharey=True)[0]
     shape = [ds.sizes[d] for d in dims]
-    n_curves = int(np.prod(shape)) if shape else 1
-    colours = _colours(n_curves)
+    colours = _colours(int(np.prod(shape)))
     marks = {"not converged": False, "open": False}
     for ax, x_name in zip(axes, panels):
         x_all = x_quantity(ds, x_name)
@@ -115,19 +114,20 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
             curve = ds.isel(at)
             xs = x_all.isel(at).transpose("speed").values
             ys = y_all.isel(at).transpose("speed").values
-            finite = np.isfinite(ys)
-            label = _label(curve, swept, plot.get("legend")) if dims else None
-            ax.plot(xs, np.where(finite, ys, np.nan), marker="o", markersize=3, color=colours[k], label=label)
+            infinite = ~np.isfinite(ys)
             failed = curve["converged"].transpose("speed").values == 0
-            if (failed & finite).any():
-                ax.plot(xs[failed & finite], ys[failed & finite], **NOT_CONVERGED_STYLE)
-                marks["not converged"] = True
-            if (~finite).any():
-                top = ax.get_xaxis_transform()
-                ax.plot(xs[~finite], np.ones((~finite).sum()), transform=top, color=colours[k], **OPEN_STYLE)
-                if (failed & ~finite).any():
-                    ax.plot(xs[failed & ~finite], np.ones((failed & ~finite).sum()), transform=top, clip_on=False, **NOT_CONVERGED_STYLE)
+            label = _label(curve, swept, plot.get("legend")) if dims else None
+            ax.plot(xs, np.where(infinite, np.nan, ys), marker="o", markersize=3, color=colours[k], label=label)
+            # +inf is drawn on the top edge: x in data, y in axes coordinates (1 = top)
+            top = ax.get_xaxis_transform()
+            if infinite.any():
+                ax.plot(xs[infinite], np.ones(infinite.sum()), transform=top, color=colours[k], **OPEN_STYLE)
                 marks["open"] = True
+            if (failed & ~infinite).any():
+                ax.plot(xs[failed & ~infinite], ys[failed & ~infinite], **NOT_CONVERGED_STYLE)
+            if (failed & infinite).any():
+                ax.plot(xs[failed & infinite], np.ones((failed & infinite).sum()), transform=top, clip_on=False, **NOT_CONVERGED_STYLE)
+            marks["not converged"] |= bool(failed.any())
         ax.set_xscale(plot.get("xscale", "log"))
         ax.set_yscale(plot.get("yscale", "log"))
         ax.set_xlabel(axis_label(x_all.attrs["long_name"], x_all.attrs["units"]))

@@ -1,0 +1,33 @@
+# lubecontact: regenerate Figures 3-11 of Jackson & Angadi (2022), Lubricants 10, 32.
+#
+#   snakemake --workflow-profile workflow/profiles/default                 # all figures
+#   snakemake --workflow-profile workflow/profiles/default --configfile config/test.yaml
+#   snakemake --report results/report.html                                 # HTML report
+#
+# A root Snakefile hides workflow/profiles/default: pass --workflow-profile as above.
+# Layout of results/ and what reruns when: results/README.md.
+
+from snakemake.utils import min_version
+
+min_version("9.0")
+
+
+configfile: "config/config.yaml"
+
+
+include: "workflow/rules/cases.smk"
+include: "workflow/rules/solve.smk"
+include: "workflow/rules/collect.smk"
+include: "workflow/rules/figures.smk"
+
+
+localrules:
+    all,
+    collect,
+    plot,
+
+
+rule all:
+    input:
+        expand("results/figures/{figure}.{ext}", figure=FIGURES, ext=["png", "pdf"]),
+    default_target: True

@@ -1,0 +1,277 @@
+"""Figure grids -> cases -> chunks -> collected Dataset (lubecontact.grid).
+
+Truths used: scene hashes computed independently with ``load_scene`` and the dotted
+overrides; hand-counted grid sizes; the import graph of a hand-written package; values
+placed by a known function of the grid coordinates.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+from lubecontact import grid, load_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+TABLE1 = ROOT / "config" / "scenes" / "table1.yaml"
+COARSE = {"mesh.nx": 15, "mesh.ny": 11}
+
+
+def write_figures(tmp_path, **figures):
+    """figNN.yaml files in tmp_path/figures from mappings; returns the directory."""
+    directory = tmp_path / "figures"
+    directory.mkdir(exist_ok=True)
+    for name, spec in figures.items():
+        (directory / f"{name}.yaml").write_text(yaml.safe_dump(spec))
+    return directory
+
+
+def sigma_figure(sigmas=(0.5e-6, 1.0e-6), speeds=(0.01, 0.1, 1.0)):
+    return {"scene": str(TABLE1), "set": dict(COARSE), "sweep": {"roughness.sigma": list(sigmas)}, "speeds": list(speeds)}
+
+
+# --- reading --------------------------------------------------------------------------------
+
+
+def test_read_yaml_takes_exponent_without_dot_as_number(tmp_path):
+    path = tmp_path / "a.yaml"
+    path.write_text("a: 1e-6\nb: 2.5E+3\nc: 0.5e-6\nd: text\ne: 7\n")
+    assert grid.read_yaml(path) == {"a": 1e-6, "b": 2500.0, "c": 0.5e-6, "d": "text", "e": 7}
+
+
+def test_merge_is_deep_and_replaces_lists():
+    base = {"sweep": {"mesh": {"mesh.nx": [1, 2], "mesh.ny": [3, 4]}}, "speeds": [1, 2], "title": "t"}
+    out = grid.merge(base, {"sweep": {"mesh": {"mesh.nx": [5]}}, "speeds": [9]})
+    assert out == {"sweep": {"mesh": {"mesh.nx": [5], "mesh.ny": [3, 4]}}, "speeds": [9], "title": "t"}
+    assert base["sweep"]["mesh"]["mesh.nx"] == [1, 2]  # not modified
+
+
+def test_log_speeds_ladder():
+    speeds = grid.log_speeds(1e-4, 10.0, 5)
+    assert len(speeds) == 26 and speeds[0] == 1e-4 and speeds[-1] == 10.0
+    exact = [10 ** (k / 5) for k in range(-20, 6)]
+    assert all(abs(s / e - 1) < 5e-3 for s, e in zip(speeds, exact))  # 3 significant digits
+    assert grid.log_speeds(1.0, 100.0, 1) == [1.0, 10.0, 100.0]
+    assert grid.log_speeds(2.0, 50.0, 1) == [10.0]  # only ladder points inside the range
+
+
+def test_figure_spec_grid_reference_takes_overrides_of_the_referenced_figure(tmp_path):
+    figures = write_figures(
+        tmp_path,
+        fig04={**sigma_figure(), "title": "four"},
+        fig05={"grid": "fig04", "title": "five"},
+    )
+    overrides = {"fig04": {"sweep": {"roughness.sigma": [2.0e-6]}}}
+    spec = grid.figure_spec("fig05", figures, overrides)
+    assert spec["title"] == "five"
+    assert spec["sweep"] == {"roughness.sigma": [2.0e-6]}
+    assert spec["speeds"] == [0.01, 0.1, 1.0]
+
+
+def test_figure_spec_refuses_grid_reference_with_own_grid_keys_and_cycles(tmp_path):
+    figures = write_figures(
+        tmp_path,
+        fig04=sigma_figure(),
+        fig05={"grid": "fig04", "speeds": [1.0]},
+        fig06={"grid": "fig07"},
+        fig07={"grid": "fig06"},
+    )
+    with pytest.raises(grid.GridError, match="remove speeds"):
+        grid.figure_spec("fig05", figures)
+    with pytest.raises(grid.GridError, match="refers back"):
+        grid.figure_spec("fig06", figures)
+
+
+# --- expansion --------------------------------------------------------------------------------
+
+
+def test_expand_case_ids_are_the_scene_hashes():
+    spec = sigma_figure()
+    g = grid.expand("fig04", spec, ROOT)
+    assert g.shape == (2, 3)
+    assert [d.name for d in g.dims] == ["sigma", "speed"]
+    for i, sigma in enumerate(spec["sweep"]["roughness.sigma"]):
+        for j, speed in enumerate(spec["speeds"]):
+            expected = load_scene(TABLE1, {**COARSE, "roughness.sigma": sigma, "operating.speed": speed}).hash
+            case = g.cases[i, j]
+            assert case.id == expected
+            assert load_scene(case.scene, case.set).hash == expected  # what a job rebuilds
+            assert case.nodes == 15 * 11
+
+
+def test_identical_scenes_across_figures_are_one_case():
+    """The base value in a sweep and the unswept base scene are the same case."""
+    swept = grid.expand("fig04", sigma_figure(), ROOT)
+    plain = grid.expand("fig99", {"scene": str(TABLE1), "set": dict(COARSE), "speeds": [0.1]}, ROOT)
+    assert plain.shape == (1,)
+    assert plain.cases[0].id == swept.cases[0, 1].id  # sigma = 0.5 um (Table 1), 0.1 m/s
+    # spelling does not matter: a string '1e-6' and a float 1.0e-6 give one case
+    spelt = grid.expand("fig04", sigma_figure(sigmas=("5e-7", "1e-6")), ROOT)
+    assert [c.id for c in spelt.cases.flat] == [c.id for c in swept.cases.flat]
+
+
+def test_zipped_sweep_and_max_nodes():
+    spec = {
+        "scene": str(TABLE1),
+        "sweep": {"mesh": {"mesh.nx": [15, 21, 31], "mesh.ny": [11, 15, 21]}},
+        "speeds": [0.1],
+        "max_nodes": 400,  # 165 and 315 nodes stay, 651 goes
+    }
+    g = grid.expand("fig03", spec, ROOT)
+    assert g.dims[0].keys == ("mesh.nx", "mesh.ny")
+    assert g.dims[0].values == ((15, 11), (21, 15))
+    coords = g.layout()["dims"][0]["coords"]
+    assert [c["name"] for c in coords] == ["nx", "ny"]
+    assert [c["values"] for c in coords] == [[15, 21], [11, 15]]
+
+
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        ({"sweep": {"roughness.sigma": [-1e-6]}}, r"roughness\.sigma = -1e-06"),
+        ({"set": {"roughness.sigmaa": 1e-6}}, r"unknown key"),
+        ({"set": {"roughness.sigma": 1e-6}}, r"roughness\.sigma set twice"),
+        ({"set": {"operating.speed": 1.0}}, r"operating\.speed set twice"),
+        ({"sweep": {"roughness.sigma": [1e-6, 1.0e-6]}}, r"lists a value twice"),
+        ({"sweep": {"m": {"mesh.nx": [15, 21], "mesh.ny": [11]}}}, r"all of one length"),
+        ({"sweep": {"force": {"geometry.length": [0.001], "geometry.radius": [0.01]}}}, r"name force used twice"),
+        ({"speeds": []}, r"speeds must be"),
+    ],
+)
+def test_bad_grids_fail_before_anything_runs(change, message):
+    spec = grid.merge(sigma_figure(), change)
+    with pytest.raises(grid.GridError, match=message) as err:
+        grid.expand("fig04", spec, ROOT)
+    assert "fig04" in str(err.value)
+
+
+# --- chunks -----------------------------------------------------------------------------------
+
+
+def test_chunks_hold_every_unique_case_once_one_curve_each():
+    g4 = grid.expand("fig04", sigma_figure(sigmas=(0.5e-6, 1.0e-6)), ROOT)
+    g8 = grid.expand("fig08", {**sigma_figure(), "sweep": {"operating.force": [2.0, 5.0]}}, ROOT)
+    chunks = grid.plan_chunks([g4, g8])
+    ids = [c.id for chunk in chunks for c in chunk.cases]
+    unique = set(g4.unique_cases()) | set(g8.unique_cases())
+    assert sorted(ids) == sorted(unique)  # each exactly once
+    # 2 sigma curves + the 2 N force curve; the 5 N curve of fig08 is fig04's sigma = 0.5 um
+    assert len(unique) == 3 * 3 and len(chunks) == 3
+    assert all(len(chunk.cases) == 3 for chunk in chunks)
+    assert [c.name.split("_")[0] for c in chunks] == ["fig04", "fig04", "fig08"]
+
+
+def test_chunk_size_and_stable_names():
+    g = grid.expand("fig04", sigma_figure(speeds=(0.01, 0.1, 1.0, 10.0)), ROOT)
+    small = grid.plan_chunks([g], cases_per_job=3)
+    assert [len(c.cases) for c in small] == [3, 1, 3, 1]
+    assert grid.plan_chunks([g]) == grid.plan_chunks([g])
+    # another sigma value adds one chunk and leaves the names of the others alone
+    more = grid.expand("fig04", sigma_figure(sigmas=(0.5e-6, 1.0e-6, 2.0e-6), speeds=(0.01, 0.1, 1.0, 10.0)), ROOT)
+    before = {c.name for c in grid.plan_chunks([g])}
+    after = {c.name for c in grid.plan_chunks([more])}
+    assert before < after and len(after - before) == 1
+    with pytest.raises(grid.GridError):
+        grid.plan_chunks([g], cases_per_job=0)
+
+
+# --- which code decides a case ----------------------------------------------------------------
+
+
+def test_solver_sources_follow_imports_of_a_known_package(tmp_path):
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    files = {
+        "__init__.py": "def __getattr__(name):\n    from .extra import x\n    return x\n",
+        "solver.py": "from .a import f\nfrom . import b\n\ndef g():\n    from lubecontact.c import h\n    import lubecontact.d\n",
+        "scene.py": "import yaml\nfrom .mesh import m\n",
+        "a.py": "import numpy\n",
+        "b.py": "from . import __version__\n",
+        "c.py": "from .e import q\n",
+        "d.py": "",
+        "e.py": "",
+        "mesh.py": "",
+        "extra.py": "",  # only reached through __init__'s lazy re-export
+        "plotting.py": "from .solver import g\n",  # imports the solver, is not imported by it
+    }
+    for name, text in files.items():
+        (pkg / name).write_text(text)
+    found = {p.name for p in grid.solver_sources(pkg)}
+    assert found == {"__init__.py", "solver.py", "scene.py", "a.py", "b.py", "c.py", "d.py", "e.py", "mesh.py"}
+
+
+def test_solver_sources_of_this_package_exclude_drawing_and_driving_code():
+    found = {p.name for p in grid.solver_sources(ROOT / "src" / "lubecontact")}
+    assert {"__init__.py", "solver.py", "scene.py", "reynolds.py", "deformation.py", "output.py"} <= found
+    assert not {"plotting.py", "grid.py", "cli.py"} & found
+    assert not [name for name in found if "sweep" in name]
+
+
+def test_fingerprint_depends_on_content_not_location(tmp_path):
+    a, b = tmp_path / "a", tmp_path / "b"
+    for d in (a, b):
+        d.mkdir()
+        (d / "solver.py").write_text("x = 1\n")
+        (d / "scene.py").write_text("y = 2\n")
+    fa = grid.sources_fingerprint([a / "solver.py", a / "scene.py"])
+    assert fa == grid.sources_fingerprint([b / "scene.py", b / "solver.py"])
+    (b / "solver.py").write_text("x = 1  # edited\n")
+    assert fa != grid.sources_fingerprint([b / "scene.py", b / "solver.py"])
+
+
+# --- collect ----------------------------------------------------------------------------------
+
+
+def fake_case(case: grid.CaseSpec, sigma: float, speed: float) -> xr.Dataset:
+    """A case file stand-in whose values are known functions of (sigma, speed)."""
+    def scalar(value, units, dtype=np.float64):
+        return xr.Variable((), np.asarray(value, dtype=dtype), {"units": units, "long_name": f"test {units}"})
+
+    return xr.Dataset(
+        {
+            "contact_resistance": scalar(sigma * 1e6 + speed, "ohm"),
+            "converged": scalar(int(speed < 1.0), "1", np.int32),
+            "speed": scalar(speed, "m s-1"),
+        },
+        attrs={"scene_hash": case.id, "scene": f"scene of {case.id}", "lubecontact_version": "9.9"},
+    )
+
+
+def test_collect_places_each_case_on_its_coordinates():
+    g = grid.expand("fig04", sigma_figure(), ROOT)
+    layout = g.layout()
+    yaml.safe_dump(layout)  # plain Python only (Snakemake params)
+    index = {c.id: (g.dims[0].values[i][0], g.dims[1].values[j][0]) for (i, j), c in np.ndenumerate(g.cases)}
+    ds = grid.collect(layout, lambda case_id: fake_case(g.unique_cases()[case_id], *index[case_id]))
+    assert ds["contact_resistance"].dims == ("sigma", "speed")
+    for sigma in ds["sigma"].values:
+        for speed in ds["speed"].values:
+            point = ds.sel(sigma=sigma, speed=speed)
+            assert math.isclose(point["contact_resistance"].item(), sigma * 1e6 + speed, rel_tol=1e-12)
+            assert point["converged"].item() == int(speed < 1.0)
+    assert ds["converged"].dtype == np.int32
+    assert ds["sigma"].attrs["units"] == "m" and ds["sigma"].attrs["scene_key"] == "roughness.sigma"
+    assert ds["speed"].attrs["units"] == "m s-1"
+    assert ds["force"].item() == 5.0 and ds["force"].attrs["units"] == "N"
+    assert ds["viscosity"].attrs["units"] == "Pa s"
+    assert ds["contact_resistance"].attrs["units"] == "ohm"
+    assert ds.attrs["lubecontact_version"] == "9.9"
+    assert load_scene(yaml.safe_load(ds.attrs["base_scene"])).roughness.sigma == 0.5e-6
+    assert "speed" not in ds.data_vars  # the case's speed became the coordinate
+
+
+def test_collect_refuses_a_file_of_another_scene_or_speed():
+    g = grid.expand("fig04", sigma_figure(), ROOT)
+    cases = g.unique_cases()
+
+    def wrong_hash(case_id):
+        ds = fake_case(cases[case_id], 0.5e-6, 0.01)
+        return ds.assign_attrs(scene_hash="0" * 16)
+
+    with pytest.raises(grid.GridError, match="holds scene"):
+        grid.collect(g.layout(), wrong_hash)
+    with pytest.raises(grid.GridError, match="speed"):
+        grid.collect(g.layout(), lambda case_id: fake_case(cases[case_id], 0.5e-6, 123.0))

@@ -1,0 +1,40 @@
+# Solve the cases: one job per chunk (config cases_per_job; default one curve = all speeds
+# of one parameter combination), each case from a cold start, one netCDF per case.
+#
+# A job's output files are fixed when the workflow is parsed, so each chunk is its own rule
+# (solve_<figure>_<hash of its members>). Outputs are update(): Snakemake keeps existing
+# case files, and the job skips a case whose file is complete (atomic writes) and was solved
+# by the current solver sources (fingerprint in the file). So a chunk whose membership
+# changed (a speed added to a grid) solves only its new cases, and a killed job resumes.
+#
+# numba (cache=True) writes its cache files atomically (temp file + rename), so parallel
+# jobs on one machine at worst compile the same kernel twice. On a cluster whose file
+# system is shared between nodes, give each node its own NUMBA_CACHE_DIR.
+
+
+for _chunk in CHUNKS:
+    _runtime, _mem_mb = solve_resources(_chunk.cases)
+
+    rule:
+        name:
+            f"solve_{_chunk.name}"
+        input:
+            sources=SOLVER_SOURCES,
+        output:
+            [update(case_path(c.id)) for c in _chunk.cases],
+        params:
+            cases=[c.plain() for c in _chunk.cases],
+        log:
+            f"results/logs/solve/{_chunk.name}.log",
+        # a cluster profile can bundle several chunks per submission (group-components);
+        # local runs ignore groups
+        group:
+            "solve"
+        threads: 1
+        resources:
+            runtime=_runtime,
+            mem_mb=_mem_mb,
+        conda:
+            "../envs/lubecontact.yaml"
+        script:
+            "../scripts/solve_chunk.py"

@@ -1,0 +1,16 @@
+"""Render one figure from results/data/<figure>.nc (lubecontact.plotting) to PNG and PDF."""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(snakemake.scriptdir).parents[1] / "src"))  # this tree's library
+
+import xarray as xr
+
+from lubecontact import plotting
+
+with open(snakemake.log[0], "w") as log:
+    sys.stdout = sys.stderr = log
+    ds = xr.load_dataset(snakemake.input.data)
+    fig = plotting.render(ds, snakemake.params.plot, snakemake.params.title)
+    plotting.save(fig, [snakemake.output.png, snakemake.output.pdf])
