@@ -5,7 +5,10 @@
 # (solve_<figure>_<hash of its members>). Outputs are update(): Snakemake keeps existing
 # case files, and the job skips a case whose file is complete (atomic writes) and was solved
 # by the current solver sources (fingerprint in the file). So a chunk whose membership
-# changed (a speed added to a grid) solves only its new cases, and a killed job resumes.
+# changed (a speed added to a grid) solves only its new cases, and after a crash of
+# Snakemake itself (--unlock, rerun) only the missing cases are solved. A job that fails
+# while Snakemake runs has its outputs removed by Snakemake and reruns whole; a retry gets
+# the runtime scaled by the attempt number (e.g. after hitting a SLURM time limit).
 #
 # numba (cache=True) writes its cache files atomically (temp file + rename), so parallel
 # jobs on one machine at worst compile the same kernel twice. On a cluster whose file
@@ -32,7 +35,7 @@ for _chunk in CHUNKS:
             "solve"
         threads: 1
         resources:
-            runtime=_runtime,
+            runtime=lambda wc, attempt, r=_runtime: r * attempt,
             mem_mb=_mem_mb,
         conda:
             "../envs/lubecontact.yaml"

@@ -11,7 +11,7 @@ to its id, or a solver exception, fails the job loudly.
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(snakemake.scriptdir).parents[1] / "src"))  # this tree's library
+sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
 
 import xarray as xr
 
