@@ -19,15 +19,20 @@ include: "workflow/rules/cases.smk"
 include: "workflow/rules/solve.smk"
 include: "workflow/rules/collect.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/accuracy.smk"
 
 
 localrules:
     all,
     collect,
     plot,
+    accuracy_table,
+    accuracy_figure,
 
 
 rule all:
     input:
         expand("results/figures/{figure}.{ext}", figure=FIGURES, ext=["png", "pdf"]),
+        expand("results/figures/accuracy_cost.{ext}", ext=["png", "pdf"]),
+        "results/data/accuracy_cost.md",
     default_target: True

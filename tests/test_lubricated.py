@@ -151,3 +151,27 @@ def test_hard_cases_meshes_stay_numerically_stable(nodes):
     speeds = HARD_SPEEDS if nodes < 200 else [1e-3, 1.0]
     s = scene(**{"mesh.nx": nodes, "mesh.ny": nodes, "solver.tolerance": 1e-7})
     assert_stable_curve(lc.sweep(s, speeds, progress=False))
+
+
+def test_a_failed_force_balance_is_written_as_not_converged(monkeypatch):
+    from lubecontact import solver
+
+    def failing(model, delta, z_guess, tolerance, *args, **kwargs):
+        state = solver.evaluate(model, 0.0, delta)
+        raise solver.SolveError("forced failure for the test", state)
+
+    monkeypatch.setattr(solver, "balance_force", failing)
+    ds = lc.solve(scene(**{"mesh.nx": 21, "mesh.ny": 11}))
+    assert ds["converged"].item() == 0
+    assert "NOT CONVERGED: forced failure" in ds.attrs["notes"]
+    assert not np.isnan(ds["contact_resistance"].item())
+
+
+def test_rigid_model_ignores_a_deformation_warm_start():
+    # a sweep under effects: auto can switch elastic_deformation off between neighbours
+    elastic = scene(**{"mesh.nx": 21, "mesh.ny": 11, "effects.hydrodynamics": False})
+    _, state = lc.solve(elastic, return_state=True)
+    rigid = elastic.replace({"effects.elastic_deformation": False})
+    warm = lc.solve(rigid, initial={"z": state.z, "delta": state.delta})
+    cold = lc.solve(rigid)
+    assert warm["contact_resistance"].item() == pytest.approx(cold["contact_resistance"].item(), rel=1e-6)

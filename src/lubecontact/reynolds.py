@@ -30,6 +30,12 @@ coarser mesh (nested iteration), which leaves 1-3 steps on each mesh whatever it
 
 Nodes whose every face has k = 0 (a dry patch where k underflowed, H < -21) carry no film:
 they are held at p = 0 and reported as cavitated.
+
+Cost: each step is a sparse LU factorisation of A_FF (SuperLU, minimum-degree ordering),
+which dominates a coupled solve on fine meshes. Two things avoid it: ``reuse`` (a solve a
+little earlier in the coupled iteration on the same pressurised set: CG preconditioned
+with its factors, BlockInverse) and ``load_sensitivity`` (dW/dh by one back-substitution,
+so the force balance takes Newton steps instead of extra Reynolds solves).
 """
 
 from __future__ import annotations
@@ -53,6 +59,14 @@ RESIDUAL_TOLERANCE = 1e-8
 COARSEST_NODES = 33
 # Active-set steps a warm start gets before the solver falls back to the cold start.
 WARM_START_STEPS = 4
+# Reuse of LU factors (``reuse``): conjugate gradients on A_FF preconditioned by the factors
+# of a nearby matrix on the same pressurised set stop at this relative residual (2-norm),
+# and give up (a new factorisation is made) after REUSE_CG_STEPS steps, or after
+# REUSE_CG_CHECK steps that have not cut the residual by REUSE_CG_CHECK_FACTOR.
+REUSE_CG_TOLERANCE = 1e-12
+REUSE_CG_STEPS = 12
+REUSE_CG_CHECK = 3
+REUSE_CG_CHECK_FACTOR = 1e-3
 
 
 @dataclass
@@ -64,6 +78,10 @@ class ReynoldsSolution:
     iterations: int  # active-set steps (linear solves); 1 without cavitation
     residual: float  # max relative residual: equations on pressurised nodes, complementarity
     converged: bool
+    # solver of the pressurised block A_FF (nodes interior & ~cavitated, C order) of the
+    # last step (``BlockInverse``), kept for ``load_sensitivity`` and ``reuse``; None when
+    # no node is pressurised
+    factor: object | None = None
 
 
 @dataclass(frozen=True)
@@ -142,14 +160,76 @@ def reynolds_system(mesh, expected_gap, coefficient, speed) -> ReynoldsSystem:
     return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown)
 
 
-def _solve_on(matrix, rhs, free):
-    """p with p = 0 off the free set and A_FF p_F = b_F on it."""
+def _factorize(block):
+    return splu(block, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+
+
+def _preconditioned_cg(block, rhs, preconditioner):
+    """x with block x = rhs by conjugate gradients preconditioned with ``preconditioner``
+    (LU factors of a nearby SPD matrix); None when it does not converge fast (see REUSE_CG_*)."""
+    x = np.zeros_like(rhs)
+    r = rhs.copy()
+    target = REUSE_CG_TOLERANCE * np.linalg.norm(rhs)
+    start = np.linalg.norm(r)
+    if start <= target:
+        return x
+    z = preconditioner.solve(r)
+    d = z.copy()
+    rz = r @ z
+    for step in range(1, REUSE_CG_STEPS + 1):
+        q = block @ d
+        alpha = rz / (d @ q)
+        x += alpha * d
+        r -= alpha * q
+        norm = np.linalg.norm(r)
+        if norm <= target:
+            return x
+        if step == REUSE_CG_CHECK and norm > REUSE_CG_CHECK_FACTOR * start:
+            return None
+        z = preconditioner.solve(r)
+        rz, rz_old = r @ z, rz
+        d = z + (rz / rz_old) * d
+    return None
+
+
+class BlockInverse:
+    """Solves with the pressurised block A_FF of one Reynolds solve: by its own LU factors,
+    or, given the factors of a nearby matrix on the same set (``preconditioner``), by
+    conjugate gradients preconditioned with them, factorising A_FF only if CG stalls.
+
+    In the coupled iteration consecutive Reynolds solves differ by a small change of the
+    film, so the old factors are an almost exact inverse and CG needs a few back-
+    substitutions instead of a factorisation (the cost of a solve on fine meshes).
+    """
+
+    def __init__(self, block, preconditioner=None):
+        self.block = block  # A_FF, csc
+        self.preconditioner = preconditioner
+        self.lu = _factorize(block) if preconditioner is None else None
+
+    @property
+    def factors(self):
+        """The LU factors used: A_FF's own, or the nearby matrix's."""
+        return self.lu if self.lu is not None else self.preconditioner
+
+    def solve(self, rhs):
+        if self.lu is None:
+            x = _preconditioned_cg(self.block, rhs, self.preconditioner)
+            if x is not None:
+                return x
+            self.lu = _factorize(self.block)
+        return self.lu.solve(rhs)
+
+
+def _solve_on(matrix, rhs, free, factors=None):
+    """(p, BlockInverse of A_FF or None) with p = 0 off the free set and A_FF p_F = b_F on
+    it; ``factors``: LU factors of a nearby matrix on the same free set to try first."""
     p = np.zeros(rhs.size)
+    inverse = None
     if free.any():
-        sub = matrix[free][:, free].tocsc()
-        p[free] = splu(sub, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                       options={"SymmetricMode": True}).solve(rhs[free])
-    return p
+        inverse = BlockInverse(matrix[free][:, free].tocsc(), factors)
+        p[free] = inverse.solve(rhs[free])
+    return p, inverse
 
 
 def _relative_residual(matrix, rhs, p, cavitated, cavitation):
@@ -167,15 +247,15 @@ def _relative_residual(matrix, rhs, p, cavitated, cavitation):
     return float(violation.max(initial=0.0) / scale)
 
 
-def _coarser(mesh):
+def _coarser(mesh, coarsest=COARSEST_NODES):
     """The mesh with every other node (same domain) in each direction longer than
-    COARSEST_NODES, or None when no direction is."""
+    ``coarsest`` nodes, or None when no direction is."""
     def halve(nodes):
-        if nodes.size <= COARSEST_NODES:
+        if nodes.size <= coarsest:
             return nodes
         return np.linspace(nodes[0], nodes[-1], (nodes.size + 1) // 2)
 
-    if mesh.nx <= COARSEST_NODES and (mesh.line or mesh.ny <= COARSEST_NODES):
+    if mesh.nx <= coarsest and (mesh.line or mesh.ny <= coarsest):
         return None
     return Mesh(x=halve(mesh.x), y=mesh.y if mesh.line else halve(mesh.y), length=mesh.length)
 
@@ -212,12 +292,13 @@ def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations
     return _interpolate(solution.pressure, coarse, mesh) <= 0.0
 
 
-def _active_set(matrix, rhs, cavitated, max_steps):
+def _active_set(matrix, rhs, cavitated, max_steps, factors=None):
     """Primal-dual active-set steps from the cavitated set ``cavitated`` (unknown-node mask):
-    (p, cavitated set of p, steps, whether the set repeated)."""
+    (p, cavitated set of p, steps, whether the set repeated, BlockInverse of the last step).
+    ``factors``: LU factors on the pressurised set of ``cavitated`` for the first step."""
     w_tol = SET_TOLERANCE * np.abs(rhs).max(initial=0.0)
     for steps in range(1, max_steps + 1):
-        p = _solve_on(matrix, rhs, ~cavitated)
+        p, factor = _solve_on(matrix, rhs, ~cavitated, factors if steps == 1 else None)
         w = matrix @ p - rhs
         p_tol = SET_TOLERANCE * np.abs(p).max(initial=0.0)
         updated = np.where(cavitated, w >= -w_tol, p < -p_tol)
@@ -225,7 +306,7 @@ def _active_set(matrix, rhs, cavitated, max_steps):
         if repeated or steps == max_steps:
             break
         cavitated = updated
-    return p, cavitated, steps, repeated
+    return p, cavitated, steps, repeated, factor
 
 
 def _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations):
@@ -237,8 +318,19 @@ def _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations):
     return _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations)[system.unknown]
 
 
+def _reusable(mesh, system, first_free, reuse):
+    """LU factors of the solution ``reuse`` when its pressurised set is ``first_free``
+    (unknown-node mask of the first linear solve), else None."""
+    if reuse is None or reuse.factor is None or reuse.pressure.shape != mesh.shape:
+        return None
+    free = np.zeros(mesh.shape, dtype=bool)
+    free[system.unknown] = first_free
+    same = np.array_equal(free, _interior(mesh.shape, mesh.line) & ~reuse.cavitated)
+    return reuse.factor.factors if same else None
+
+
 def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
-                   cavitated_guess=None, max_iterations=100) -> ReynoldsSolution:
+                   cavitated_guess=None, max_iterations=100, reuse=None) -> ReynoldsSolution:
     """Fluid pressure of Eq. (1) with p = 0 on the boundary.
 
     cavitation=True: Reynolds (Swift-Stieber) condition by the primal-dual active-set method.
@@ -247,6 +339,9 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     the cold start: the solution on a mesh with half the nodes (recursively; on the coarsest
     mesh the nodes where the gap diverges). ``iterations`` counts the steps on ``mesh``.
     cavitation=False: full Sommerfeld, one linear solve, p may be negative.
+    ``reuse``: the solution of a nearby problem on the same mesh (the previous evaluation of
+    a coupled iteration); when the first linear solve is on its pressurised set, it runs by
+    CG preconditioned with its LU factors (BlockInverse) instead of a new factorisation.
     """
     if max_iterations < 1:
         raise ValueError(f"max_iterations must be >= 1, got {max_iterations}")
@@ -256,18 +351,18 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     matrix, rhs = system.matrix, system.rhs
     if not cavitation:
         cavitated = np.zeros(rhs.size, dtype=bool)
-        p = _solve_on(matrix, rhs, ~cavitated)
+        p, factor = _solve_on(matrix, rhs, ~cavitated, _reusable(mesh, system, ~cavitated, reuse))
         iterations, repeated = 1, True
     else:
         iterations, repeated = 0, False
         if cavitated_guess is not None:
             warm = np.asarray(cavitated_guess, dtype=bool)[system.unknown]
-            p, cavitated, iterations, repeated = _active_set(
-                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations)
+            p, cavitated, iterations, repeated, factor = _active_set(
+                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), _reusable(mesh, system, ~warm, reuse)
             )
         if not repeated and iterations < max_iterations:
             cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations)
-            p, cavitated, steps, repeated = _active_set(matrix, rhs, cold, max_iterations - iterations)
+            p, cavitated, steps, repeated, factor = _active_set(matrix, rhs, cold, max_iterations - iterations)
             iterations += steps
     residual = _relative_residual(matrix, rhs, p, cavitated, cavitation)
 
@@ -281,6 +376,7 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
         iterations=iterations,
         residual=residual,
         converged=bool(repeated and residual <= RESIDUAL_TOLERANCE),
+        factor=factor,
     )
 
 
@@ -304,3 +400,40 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed) -> float:
     for q, left, right in ((qx, full[:, :-1], full[:, 1:]), (qy, full[:-1, :], full[1:, :])):
         total += q[left & ~right].sum() - q[right & ~left].sum()
     return float(total)
+
+
+def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed) -> np.ndarray:
+    """dW/dh_j, N/m (ny, nx): how the fluid load W = sum_i p_i dA_i changes with the film at
+    node j, at the solution's active set, by the adjoint method (one more solve with A_FF:
+    a back-substitution with the LU factors the solve left, or a few CG steps when it
+    reused older factors).
+
+    With the residual r = A(k) p - b(h_T) on the pressurised set F and A_FF lambda = dA_F
+    (A is symmetric), dW/dh_j = -lambda^T dr/dh_j. In face form lambda^T r =
+    sum_faces T_f (lambda_a - lambda_b)(p_a - p_b) + sum_x-faces c_f (lambda_a - lambda_b)
+    (a the node before b, c_f the Couette flux), and T_f, c_f are face means of nodal k and
+    h_T, so each face passes half its derivative to each of its nodes. ``gap_slope`` =
+    dh_T/dh and ``coefficient_slope`` = dk/dh are nodal (ny, nx). The cavitated set moves
+    with h too, but where it meets the pressurised set p = 0 and grad p = 0 (Reynolds
+    condition), so that motion does not change W to first order.
+    """
+    sensitivity = np.zeros(mesh.shape)
+    if solution.factor is None:
+        return sensitivity
+    free = _interior(mesh.shape, mesh.line) & ~solution.cavitated
+    adjoint = np.zeros(mesh.shape)
+    adjoint[free] = solution.factor.solve(mesh.nodal_area[free])
+    p = solution.pressure
+    coefficient_part = np.zeros(mesh.shape)
+    couette_part = np.zeros(mesh.shape)
+    jump_x = adjoint[:, :-1] - adjoint[:, 1:]
+    for part, face in (
+        (coefficient_part, 0.5 * (mesh.dy / mesh.dx) * jump_x * (p[:, :-1] - p[:, 1:])),
+        (couette_part, 0.25 * speed * mesh.dy * jump_x),
+    ):
+        part[:, :-1] += face
+        part[:, 1:] += face
+    face_y = 0.5 * (mesh.dx / mesh.dy) * (adjoint[:-1, :] - adjoint[1:, :]) * (p[:-1, :] - p[1:, :])
+    coefficient_part[:-1, :] += face_y
+    coefficient_part[1:, :] += face_y
+    return -(np.asarray(coefficient_slope) * coefficient_part + np.asarray(gap_slope) * couette_part)

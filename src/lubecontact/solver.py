@@ -7,23 +7,35 @@ and both deform the surfaces: delta = K (p + p_c). The cylinder's position balan
 applied force: F = F_cont + F_fluid (Eq. 18).
 
 Algorithm (only the enabled effects are assembled and run):
+0. Nested iteration: with asperity contact, the same problem is first solved on the mesh
+   with every other node (recursively, loosely), and the fine mesh starts from its
+   position, deformation and cavitated zone (``nested_start``).
 1. For the current deformation, find z with the force balance satisfied to
-   ``tolerance * F``: a bracketed Brent root on the monotone total force (the contact law
-   has a jump at 1.9 omega_c, so nothing here relies on its smoothness).
+   ``tolerance * F``: safeguarded Newton on the total force, whose slope dF/dz comes with
+   each evaluation (contact law slope + Reynolds adjoint, ``force_gradient``); bisection
+   once bracketed when a step misbehaves (the contact law has a jump at 1.9 omega_c).
 2. Recompute the deformation from the pressures at that z. The fixed point
    delta -> K(p + p_c) is stiff where the asperities are stiff against the surface
    compliance, so each correction is preconditioned by the contact part of its Jacobian:
    (I + K D) step = K(p + p_c) - delta with D = -dp_c/dh >= 0, solved by GMRES with the
    FFT operator (a Newton step for the dry contact), and the preconditioned map is then
-   accelerated by Anderson mixing (which also picks up the fluid's stiffness). Stop when
-   the change is below ``tolerance`` times the deformation's range.
+   accelerated by Anderson mixing (which also picks up the fluid's stiffness). The next z
+   is predicted to first order from the load gradient, so a balance near convergence takes
+   one evaluation. Stop when the change is below ``tolerance`` times the deformation's range.
+Consecutive Reynolds solves reuse the previous LU factors as a CG preconditioner while the
+pressurised set stays (reynolds.BlockInverse). The solve runs with one BLAS thread.
 Every solve reports its residuals and a ``converged`` flag; nothing is silently accepted.
+The discrete coupled problem can have more than one converged solution at some hard points
+(very smooth surfaces on coarse meshes, where the fluid load jumps as the contact edge
+crosses nodes; 500 N at 10 m/s, a fluid-lifted and a contact-carried branch): which one a
+solve finds then depends on its start (bench/RESULTS.md, "Several solutions").
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 from scipy.sparse.linalg import LinearOperator, gmres
@@ -38,7 +50,12 @@ MARTIN_LOAD_COEFFICIENT = 4.9
 
 
 class SolveError(RuntimeError):
-    """The force balance could not even be bracketed (reported, never swallowed)."""
+    """The force balance failed; ``state`` is the last state evaluated (or None). A solve
+    reports it as ``converged = 0`` with the message in the case notes, never swallowed."""
+
+    def __init__(self, message: str, state=None):
+        super().__init__(message)
+        self.state = state
 
 
 @dataclass
@@ -53,14 +70,17 @@ class Model:
     hydrodynamic: bool  # Reynolds solved (effect on and speed > 0)
 
     @classmethod
-    def assemble(cls, scene) -> "Model":
+    def assemble(cls, scene, mesh: Mesh | None = None, contact=None) -> "Model":
+        """The model of ``scene`` on its mesh (or on ``mesh``, same domain), reusing the
+        rough-contact tables ``contact`` of the same scene when given."""
         effects = scene.effects
-        mesh = build_mesh(scene)
+        mesh = build_mesh(scene) if mesh is None else mesh
         radius = scene.geometry.radius
         gap_x = radius - np.sqrt(radius**2 - mesh.x**2)  # Eq. (4)
         undeformed = np.broadcast_to(gap_x, mesh.shape).copy()
-        contact = None
-        if effects.asperity_contact:
+        if not effects.asperity_contact:
+            contact = None
+        elif contact is None:
             from .rough_surface import RoughContact
 
             contact = RoughContact.from_scene(scene)
@@ -71,6 +91,14 @@ class Model:
             deformation = ElasticDeformation(mesh, effective_modulus(scene))
         hydrodynamic = bool(effects.hydrodynamics) and scene.operating.speed > 0.0
         return cls(scene, mesh, undeformed, contact, deformation, hydrodynamic)
+
+    def coarsened(self) -> "Model | None":
+        """The same model on the mesh with every other node (same domain) in each direction
+        longer than NESTED_COARSEST nodes; None when there is none."""
+        from .reynolds import _coarser
+
+        coarse = _coarser(self.mesh, NESTED_COARSEST)
+        return None if coarse is None else Model.assemble(self.scene, coarse, self.contact)
 
     @property
     def effects_run(self) -> dict:
@@ -99,6 +127,9 @@ class State:
     reynolds: object | None  # ReynoldsSolution
     contact_force: float
     fluid_force: float
+    contact_slope: np.ndarray | None = None  # dp_c/dh (Pa/m) of the contact law, <= 0
+    flow_coefficient: np.ndarray | None = None  # k used by the fluid, m^3/(Pa s)
+    load_gradient: np.ndarray | None = None  # dF/dh_j (N/m), set by balance_force
 
     @property
     def total_force(self) -> float:
@@ -132,20 +163,25 @@ def fluid_film(model: Model, film: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return h_t, k
 
 
-def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None) -> State:
-    """Pressures and forces at cylinder position z with deformation delta (Eqs. 3-5, 11)."""
+def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, reuse=None) -> State:
+    """Pressures and forces at cylinder position z with deformation delta (Eqs. 3-5, 11).
+    ``cavitated_guess`` and ``reuse`` (a previous ReynoldsSolution on this mesh) warm-start
+    the Reynolds solve (reynolds.solve_reynolds)."""
     mesh, scene = model.mesh, model.scene
     film = model.undeformed_gap + z + delta
     area = mesh.nodal_area
-    contact_pressure = model.contact.pressure(film) if model.contact is not None else np.zeros(mesh.shape)
+    contact_pressure, contact_slope = np.zeros(mesh.shape), None
+    if model.contact is not None:
+        contact_pressure, contact_slope = model.contact.pressure_and_slope(film)
     fluid_pressure = np.zeros(mesh.shape)
-    h_t = reynolds = None
+    h_t = k = reynolds = None
     if model.hydrodynamic:
         from .reynolds import solve_reynolds
 
         h_t, k = fluid_film(model, film)
         reynolds = solve_reynolds(
-            mesh, h_t, k, scene.operating.speed, cavitation=scene.effects.cavitation, cavitated_guess=cavitated_guess
+            mesh, h_t, k, scene.operating.speed, cavitation=scene.effects.cavitation, cavitated_guess=cavitated_guess,
+            reuse=reuse,
         )
         fluid_pressure = reynolds.pressure
     return State(
@@ -158,6 +194,8 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None) ->
         reynolds=reynolds,
         contact_force=float(np.sum(contact_pressure * area)),
         fluid_force=float(np.sum(fluid_pressure * area)),
+        contact_slope=contact_slope,
+        flow_coefficient=k,
     )
 
 
@@ -170,14 +208,43 @@ def _film_scale(model: Model) -> float:
     return MARTIN_LOAD_COEFFICIENT * s.lubricant.viscosity * 0.5 * s.operating.speed * s.geometry.radius / w
 
 
+# Relative step (in units of the film scale) of the forward differences of h_T(h) and k(h)
+# in force_gradient: their truncation error is ~1e-6 relative, far below what a Newton
+# step on the force balance needs.
+SLOPE_STEP = 1e-6
+
+
+def force_gradient(model: Model, state: State) -> np.ndarray:
+    """dF/dh_j, N/m (ny, nx): how the carried load changes with the film at each node, at the
+    state's cavitated set: contact dp_c/dh times the nodal area plus the Reynolds adjoint
+    (reynolds.load_sensitivity, one back-substitution). Its sum is dF/dz (< 0)."""
+    gradient = np.zeros(model.mesh.shape)
+    if state.contact_slope is not None:
+        gradient += state.contact_slope * model.mesh.nodal_area
+    if state.reynolds is not None:
+        from .reynolds import load_sensitivity
+
+        step = SLOPE_STEP * _film_scale(model)
+        h_t, k = fluid_film(model, state.film + step)
+        gradient += load_sensitivity(
+            model.mesh, state.reynolds, (h_t - state.expected_gap) / step, (k - state.flow_coefficient) / step,
+            model.scene.operating.speed,
+        )
+    return gradient
+
+
 def balance_force(model: Model, delta: np.ndarray, z_guess: float | None, tolerance: float,
-                  stiffness_guess: float | None = None, cavitated_guess=None) -> tuple[State, float]:
+                  stiffness_guess: float | None = None, cavitated_guess=None, reuse=None) -> tuple[State, float]:
     """Solve Eq. (18) for z at fixed deformation; returns the state and dF/dz (N/m, > 0 up).
 
-    The total force falls monotonically as the cylinder rises, so the root is bracketed
-    (first step from the previous stiffness when known, then doubling) and refined by
-    Illinois regula falsi until |F_cont + F_fluid - F| <= tolerance * F. Each evaluation
-    may cost a Reynolds solve, so the stopping test is on the force itself.
+    Safeguarded Newton: the total force F(z) falls as the cylinder rises (not everywhere:
+    see the module docstring) and its slope is known at each evaluation (force_gradient,
+    stored as state.load_gradient). Each step is Newton's; once the root is bracketed, a
+    step that leaves the bracket or did not halve the force error (the contact law jumps at
+    1.9 omega_c, the cavitated set moves) is replaced by bisection. Before the bracket, a
+    step without a usable slope (or that stalls) moves by |F error| / stiffness_guess, or
+    the film scale, doubling each time. Each evaluation may cost a Reynolds solve, so the
+    stopping test is on the force: |F_cont + F_fluid - F| <= tolerance * F.
     """
     force = model.scene.operating.force
     ftol = tolerance * force
@@ -185,54 +252,47 @@ def balance_force(model: Model, delta: np.ndarray, z_guess: float | None, tolera
     lowest = -np.inf
     if model.contact is None:  # smooth film: h must stay positive everywhere
         lowest = -float(np.min(model.undeformed_gap + delta))
-    z0 = z_guess if z_guess is not None else (lowest + scale if np.isfinite(lowest) else 0.0)
-    if z0 <= lowest:
-        z0 = lowest + scale
-    cavitated = cavitated_guess
-
-    def residual(z: float) -> tuple[float, State]:
-        nonlocal cavitated
-        state = evaluate(model, z, delta, cavitated)
+    z = z_guess if z_guess is not None else (lowest + scale if np.isfinite(lowest) else 0.0)
+    if z <= lowest:
+        z = lowest + scale
+    cavitated, previous = cavitated_guess, reuse
+    below = above = None  # z known to carry too much (root above it) / too little load
+    step = None
+    previous_error = np.inf
+    for _ in range(400):
+        state = evaluate(model, z, delta, cavitated, previous)
         if state.reynolds is not None:
-            cavitated = state.reynolds.cavitated
-        return state.total_force - force, state
-
-    fa, state_a = residual(z0)
-    a = z0
-    if abs(fa) <= ftol:
-        return state_a, stiffness_guess or 0.0
-    step = abs(fa) / stiffness_guess if stiffness_guess else scale
-    for _ in range(200):
-        if fa > 0.0:  # too much load: move the cylinder up
-            b = a + step
+            cavitated, previous = state.reynolds.cavitated, state.reynolds
+        error = state.total_force - force
+        state.load_gradient = force_gradient(model, state)
+        slope = float(np.sum(state.load_gradient))  # dF/dz
+        if abs(error) <= ftol:
+            return state, -slope
+        if step is None:
+            step = abs(error) / stiffness_guess if stiffness_guess else scale
+        if error > 0.0:
+            below = z
         else:
-            b = max(a - step, lowest + 0.5 * (a - lowest)) if np.isfinite(lowest) else a - step
-        fb, state_b = residual(b)
-        if abs(fb) <= ftol:
-            return state_b, abs(fb - fa) / abs(b - a)
-        if np.sign(fb) != np.sign(fa):
-            break
-        a, fa, state_a = b, fb, state_b
-        step *= 2.0
-    else:
-        raise SolveError(f"could not bracket the force balance (last z = {a:.4g} m, force error {fa:.4g} N)")
-    side = 0
-    for _ in range(200):
-        c = (a * fb - b * fa) / (fb - fa)
-        fc, state_c = residual(c)
-        if abs(fc) <= ftol or abs(b - a) <= 4 * np.finfo(float).eps * max(abs(a), abs(b)):
-            return state_c, abs(fb - fa) / abs(b - a)
-        if np.sign(fc) == np.sign(fb):
-            b, fb = c, fc
-            if side == -1:
-                fa *= 0.5  # Illinois: stop the stale end from stalling the interval
-            side = -1
+            above = z
+        newton = z - error / slope if slope < 0.0 else None
+        if below is not None and above is not None:
+            if abs(above - below) <= 4 * np.finfo(float).eps * max(abs(above), abs(below)):
+                return state, -slope
+            halved = abs(error) <= 0.5 * previous_error
+            inside = newton is not None and min(below, above) < newton < max(below, above)
+            z = newton if inside and halved else 0.5 * (below + above)
         else:
-            a, fa = c, fc
-            if side == 1:
-                fb *= 0.5
-            side = 1
-    raise SolveError(f"force balance did not converge in the bracket [{a:.6g}, {b:.6g}] m")
+            if newton is None or abs(error) > 0.5 * previous_error:  # no slope, or stalling
+                newton = z + (step if error > 0.0 else -step)  # too much load: move up
+                step *= 2.0
+            if newton <= lowest:
+                newton = lowest + 0.5 * (z - lowest)
+            z = newton
+        previous_error = abs(error)
+    raise SolveError(
+        f"force balance did not converge (z = {z:.6g} m, force error {error:.4g} N, bracket {below}, {above})",
+        state,
+    )
 
 
 def contact_newton_step(model: Model, state: State, residual: np.ndarray) -> np.ndarray:
@@ -246,8 +306,7 @@ def contact_newton_step(model: Model, state: State, residual: np.ndarray) -> np.
     """
     if model.contact is None:
         return residual
-    _, slope = model.contact.pressure_and_slope(state.film)
-    stiffness = -slope  # >= 0, Pa/m
+    stiffness = -state.contact_slope  # >= 0, Pa/m
     weight = stiffness * model.mesh.nodal_area
     total = float(np.sum(weight))
     if not total > 0.0:
@@ -274,41 +333,110 @@ INEXACT_BALANCE_FACTOR = 0.1
 LOOSEST_BALANCE_TOLERANCE = 1e-3
 
 
-def coupled_solve(model: Model, initial: dict | None = None) -> tuple[State, dict]:
-    """Iterate force balance and deformation to convergence; returns the state and diagnostics."""
+# Nested iteration (coarse-to-fine start). From a cold start the first force balances move
+# the cylinder by many film thicknesses and the cavitation boundary by many nodes, each
+# evaluation a Reynolds solve of several factorisations. So a cold start first solves the
+# same problem on the mesh with every other node (recursively, down to NESTED_COARSEST
+# nodes a side) to NESTED_TOLERANCE (the levels differ by their discretisation error
+# anyway) and starts from its position, deformation, cavitated zone and force stiffness.
+# The fine mesh is then solved by the same stopping tests to the scene's tolerance, so the
+# answer is that of a cold start within the tolerance (where the discrete problem has one
+# solution: see the module docstring). Only with asperity contact: a smooth film needs
+# h > 0 at every node, and a coarse mesh may not resolve the thin film a fine one carries
+# the load on (Martin's rigid cylinder needs thousands of nodes), so smooth films start cold.
+NESTED_COARSEST = 26
+NESTED_TOLERANCE = 1e-3
+
+
+def nested_start(model: Model, tolerance: float, initial: dict | None = None) -> dict | None:
+    """``initial`` of coupled_solve on ``model``'s mesh: the solution on the coarser mesh,
+    itself started from ``initial`` (a warm start, interpolated to it) and so on down to
+    the coarsest mesh, where ``initial`` is used as it is.
+
+    Without a coarser mesh, or when a coarse level does not converge or cannot bracket its
+    force balance, ``initial`` is returned: the fine mesh then starts from it and is judged
+    on its own.
+    """
+    from .reynolds import _interpolate
+
+    coarse = model.coarsened() if model.contact is not None else None
+    if coarse is None:
+        return initial
+    coarse_initial = None
+    if initial:
+        coarse_initial = {key: initial[key] for key in ("z", "stiffness") if key in initial}
+        if "delta" in initial:
+            delta = np.asarray(initial["delta"], dtype=float).reshape(model.mesh.shape)
+            coarse_initial["delta"] = _interpolate(delta, model.mesh, coarse.mesh)
+    try:
+        state, diag = coupled_solve(coarse, coarse_initial, tolerance=max(tolerance, NESTED_TOLERANCE))
+    except SolveError:
+        return initial
+    if not diag["converged"]:
+        return initial
+    start = {"z": state.z, "delta": _interpolate(state.delta, coarse.mesh, model.mesh), "stiffness": diag["stiffness"]}
+    if state.reynolds is not None:
+        start["cavitated"] = _interpolate(state.fluid_pressure, coarse.mesh, model.mesh) <= 0.0
+    return start
+
+
+def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | None = None) -> tuple[State, dict]:
+    """Iterate force balance and deformation to convergence; returns the state and diagnostics.
+
+    ``initial``: {"z", "delta"} and optionally {"cavitated", "stiffness"} to start from
+    (None: cold); either way the fine mesh starts from the nested (coarse-mesh) solution
+    where there is one (nested_start). ``tolerance`` overrides the scene's.
+    """
     scene = model.scene
-    tol = scene.solver.tolerance
+    tol = scene.solver.tolerance if tolerance is None else tolerance
     force = scene.operating.force
     max_iterations = scene.solver.max_iterations
+    initial = nested_start(model, tol, initial)
     delta = np.zeros(model.mesh.shape)
-    z = None
+    z = stiffness = cavitated = reynolds = None
     if initial:
-        delta = np.array(initial.get("delta", delta), dtype=float).reshape(model.mesh.shape)
+        if model.deformation is not None:  # a rigid model has no deformation to start from
+            delta = np.array(initial.get("delta", delta), dtype=float).reshape(model.mesh.shape)
         z = initial.get("z")
+        stiffness = initial.get("stiffness")
+        cavitated = initial.get("cavitated")
     mixer = AndersonMixer(beta=1.0)
-    stiffness = cavitated = None
     change = 0.0
     balance_tol = tol if model.deformation is None else LOOSEST_BALANCE_TOLERANCE
     deformation_converged = False
-    for iteration in range(1, max_iterations + 1):
-        state, stiffness = balance_force(model, delta, z, balance_tol, stiffness, cavitated)
-        z = state.z
-        if state.reynolds is not None:
-            cavitated = state.reynolds.cavitated
-        if model.deformation is None:
-            deformation_converged = True
-            break
-        new_delta = model.deformation(state.total_pressure)
-        change = float(np.max(np.abs(new_delta - delta)))
-        relative_change = change / max(float(np.ptp(new_delta)), 1e-15)
-        if relative_change <= tol:
-            deformation_converged = True
-            break
-        balance_tol = max(tol, min(LOOSEST_BALANCE_TOLERANCE, INEXACT_BALANCE_FACTOR * relative_change))
-        step = contact_newton_step(model, state, new_delta - delta)
-        delta = mixer.step(delta, delta + step)
-    if abs(force - state.total_force) > tol * force:  # last inner solve was inexact
-        state, _ = balance_force(model, state.delta, state.z, tol, stiffness, cavitated)
+    failure = ""
+    iteration = 0
+    try:
+        for iteration in range(1, max_iterations + 1):
+            state, stiffness = balance_force(model, delta, z, balance_tol, stiffness, cavitated, reynolds)
+            z = state.z
+            if state.reynolds is not None:
+                cavitated, reynolds = state.reynolds.cavitated, state.reynolds
+            if model.deformation is None:
+                deformation_converged = True
+                break
+            new_delta = model.deformation(state.total_pressure)
+            change = float(np.max(np.abs(new_delta - delta)))
+            relative_change = change / max(float(np.ptp(new_delta)), 1e-15)
+            if relative_change <= tol:
+                deformation_converged = True
+                break
+            balance_tol = max(tol, min(LOOSEST_BALANCE_TOLERANCE, INEXACT_BALANCE_FACTOR * relative_change))
+            step = contact_newton_step(model, state, new_delta - delta)
+            new_delta = mixer.step(delta, delta + step)
+            # first-order prediction of the balanced position for the new deformation:
+            # F + dF/dz dz + sum_j dF/dh_j (new_delta - delta)_j = applied force
+            gradient = state.load_gradient
+            slope = float(np.sum(gradient))
+            if slope < 0.0:
+                z -= (state.total_force - force + float(np.sum(gradient * (new_delta - delta)))) / slope
+            delta = new_delta
+        if abs(force - state.total_force) > tol * force:  # last inner solve was inexact
+            state, _ = balance_force(model, state.delta, state.z, tol, stiffness, cavitated, reynolds)
+    except SolveError as err:  # reported as not converged, with the last state evaluated
+        if err.state is None:
+            raise
+        state, failure = err.state, str(err)
     reynolds_ok = state.reynolds is None or bool(state.reynolds.converged)
     force_residual = force - state.total_force
     diagnostics = {
@@ -316,9 +444,26 @@ def coupled_solve(model: Model, initial: dict | None = None) -> tuple[State, dic
         "deformation_residual": change,
         "force_residual": force_residual,
         "reynolds_residual": 0.0 if state.reynolds is None else float(state.reynolds.residual),
-        "converged": deformation_converged and reynolds_ok and abs(force_residual) <= tol * force,
+        "converged": not failure and deformation_converged and reynolds_ok and abs(force_residual) <= tol * force,
+        "stiffness": stiffness,
+        "failure": failure,
     }
     return state, diagnostics
+
+
+@cache
+def _blas_controller():
+    """The BLAS thread pools of numpy and scipy (threadpoolctl), looked up once.
+
+    The solve runs with one BLAS thread: its BLAS calls are small (vector norms and dots of
+    GMRES and Anderson, SuperLU's dense kernels of a 2D problem), so threads only add
+    synchronisation, and where other processes share the cores (a parallel workflow) an
+    idle-spinning OpenBLAS thread makes each call 10-100 times slower (bench/RESULTS.md).
+    The limit holds only inside solve(); the caller's setting is restored after it.
+    """
+    from threadpoolctl import ThreadpoolController
+
+    return ThreadpoolController()
 
 
 def _central_value(mesh: Mesh, field: np.ndarray) -> float:
@@ -344,8 +489,11 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
 
         scene, reasons = resolve_auto_effects(scene)
         notes.append("effects: auto -> " + "; ".join(f"{k}: {v}" for k, v in reasons.items()))
-    model = Model.assemble(scene)
-    state, diag = coupled_solve(model, initial)
+    with _blas_controller().limit(limits=1, user_api="blas"):
+        model = Model.assemble(scene)
+        state, diag = coupled_solve(model, initial)
+    if diag["failure"]:
+        notes.append("NOT CONVERGED: " + diag["failure"])
     mesh = model.mesh
     area = mesh.nodal_area
     if model.contact is not None:
@@ -372,7 +520,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         "fluid_force": state.fluid_force,
         "contact_force": state.contact_force,
         "applied_force": force,
-        "fluid_load_fraction": state.fluid_force / carried if carried > 0 else np.nan,
+        "fluid_load_fraction": state.fluid_force / carried if carried > 0 else 0.0,
         "min_film_thickness": float(np.min(state.film)),
         "central_film_thickness": _central_value(mesh, state.film),
         "separation": state.z,

@@ -1,0 +1,75 @@
+# What accuracy costs (lubecontact.convergence): the Table 1 contact on a ladder of meshes,
+# domain lengths and solver tolerances at speeds in every regime, each solve timed; then
+# Richardson extrapolation -> error of every mesh -> table (netCDF + Markdown) -> figure.
+# The study is config/accuracy.yaml, deep-merged with config["accuracy"] (config/test.yaml
+# makes it tiny). Needs SOLVER_SOURCES (cases.smk).
+
+from snakemake.exceptions import WorkflowError
+
+from lubecontact import convergence as lcconv
+
+ACCURACY = lcconv.study_spec("config/accuracy.yaml", config.get("accuracy"))
+# The timing job takes every core of a local run, so it runs alone and its wall times are
+# those of one solve on an otherwise idle machine (each solve is single-threaded). Modes
+# that run nothing (--report, --lint) have no core count.
+try:
+    ACCURACY_THREADS = workflow.cores
+except WorkflowError:
+    ACCURACY_THREADS = 1
+
+
+rule accuracy_solve:
+    input:
+        sources=SOLVER_SOURCES,
+        study="config/accuracy.yaml",
+        code="src/lubecontact/convergence.py",
+    output:
+        "results/accuracy/study.nc",
+    params:
+        study=ACCURACY,
+    log:
+        "results/logs/accuracy/solve.log",
+    threads: ACCURACY_THREADS
+    resources:
+        runtime=60,
+        mem_mb=3000,
+    conda:
+        "../envs/lubecontact.yaml"
+    script:
+        "../scripts/accuracy_solve.py"
+
+
+rule accuracy_table:
+    input:
+        study="results/accuracy/study.nc",
+        code="src/lubecontact/convergence.py",
+    output:
+        nc="results/data/accuracy_cost.nc",
+        md=report("results/data/accuracy_cost.md", category="Accuracy and cost"),
+    params:
+        targets=ACCURACY["targets"],
+    log:
+        "results/logs/accuracy/table.log",
+    conda:
+        "../envs/lubecontact.yaml"
+    script:
+        "../scripts/accuracy_table.py"
+
+
+rule accuracy_figure:
+    input:
+        data="results/data/accuracy_cost.nc",
+        code="src/lubecontact/convergence.py",
+    output:
+        png=report(
+            "results/figures/accuracy_cost.png",
+            caption="../scripts/accuracy_caption.rst",
+            category="Accuracy and cost",
+        ),
+        pdf="results/figures/accuracy_cost.pdf",
+    log:
+        "results/logs/accuracy/figure.log",
+    conda:
+        "../envs/lubecontact.yaml"
+    script:
+        "../scripts/accuracy_plot.py"
