@@ -78,6 +78,10 @@ def edited(path: Path, old: str, new: str):
         path.write_bytes(original)
 
 
+# the accuracy_cost study (workflow/rules/accuracy.smk): one timed solve job, table, figure
+ACCURACY = {"accuracy_solve": 1, "accuracy_table": 1, "accuracy_figure": 1}
+
+
 # --- plans and lint (no solving) ---------------------------------------------------------------
 
 
@@ -90,19 +94,19 @@ def fresh(tmp_path_factory):
 def test_tiny_config_plans_every_figure(fresh):
     # test.yaml: 5 grids of 2 curves on the same coarse mesh, each with the base value, so
     # the baseline curve is shared: 1 + 5 curves = 6 jobs of 4 speeds; 9 figures.
-    assert planned(fresh, *TINY) == Counter(solve=6, collect=9, plot=9, all=1)
+    assert planned(fresh, *TINY) == Counter(solve=6, collect=9, plot=9, all=1, **ACCURACY)
 
 
 @pytest.mark.slow
 def test_default_grids(fresh):
-    # fig03: 5 meshes up to 101^2 (51^2 is the baseline); fig04: 4 sigma, fig06: 4 radii,
+    # fig03: 7 meshes up to 201^2 (51^2 is the baseline); fig04: 4 sigma, fig06: 4 radii,
     # fig10: 4 viscosities, each with the baseline; fig08: 5 forces with the baseline;
-    # fig05/07/09/11 reuse those grids: 5 + 3 + 3 + 4 + 3 = 18 curves of 26 speeds.
-    assert planned(fresh) == Counter(solve=18, collect=9, plot=9, all=1)
+    # fig05/07/09/11 reuse those grids: 7 + 3 + 3 + 4 + 3 = 20 curves of 26 speeds.
+    assert planned(fresh) == Counter(solve=20, collect=9, plot=9, all=1, **ACCURACY)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
     cases = {c for g in grid.expand_all(specs, ROOT).values() for c in g.unique_cases()}
-    assert len(cases) == 18 * 26
+    assert len(cases) == 20 * 26
 
 
 @pytest.mark.slow
@@ -201,7 +205,7 @@ def test_one_grid_value_solves_one_curve(built):
 def test_solver_change_resolves_every_case_and_content_decides(built):
     solver = built / "src" / "lubecontact" / "solver.py"
     with edited(solver, '"""', '"""Edited. '):
-        assert planned(built, *TINY) == Counter(solve=6, collect=9, plot=9, all=1)
+        assert planned(built, *TINY) == Counter(solve=6, collect=9, plot=9, all=1, **ACCURACY)
     # restored: newer time stamp, same content -> nothing to do
     assert planned(built, *TINY) == Counter()
 
