@@ -12,8 +12,9 @@ U h_T*/2, so only the fraction theta = h_T*/h_T of the gap is wetted and the Cou
 there is scaled by theta (row by row in y). Upstream of the pressure peak the film is full.
 
 Where the rough surfaces are in contact (h < 0) h_T -> 0 and mu U/h_T would diverge; the
-lubricant there is held in the valleys between contacting asperities, so the Couette gap is
-floored at h_T(0) = sigma/sqrt(2 pi), the expected gap of two surfaces whose mean planes meet.
+lubricant there is held in the valleys between contacting asperities. The expected gap this
+module receives is the fluid's (solver.fluid_film), which holds the film at h = 0 there, so
+the Couette gap is never below h_T(0) = sigma/sqrt(2 pi).
 """
 
 from __future__ import annotations
@@ -40,13 +41,11 @@ def wetted_fraction(expected_gap: np.ndarray, pressure: np.ndarray, cavitated: n
     return theta
 
 
-def fluid_shear_force(mesh, expected_gap, pressure, cavitated, viscosity: float, speed: float, sigma: float | None) -> float:
-    """int tau dA over the mesh, in N (positive: resists the sliding of the block).
-    ``sigma`` None means smooth surfaces (no valley floor on the Couette gap)."""
+def fluid_shear_force(mesh, expected_gap, pressure, cavitated, viscosity: float, speed: float) -> float:
+    """int tau dA over the mesh, in N (positive: resists the sliding of the block)."""
     dpdx = np.gradient(pressure, mesh.x, axis=1)
     theta = wetted_fraction(expected_gap, pressure, cavitated)
-    couette_gap = expected_gap if sigma is None else np.maximum(expected_gap, sigma / np.sqrt(2.0 * np.pi))
-    tau = theta * viscosity * speed / couette_gap + 0.5 * expected_gap * dpdx * (~cavitated)
+    tau = theta * viscosity * speed / expected_gap + 0.5 * expected_gap * dpdx * (~cavitated)
     return float(np.sum(tau * mesh.nodal_area))
 
 

@@ -146,7 +146,8 @@ class State:
 # ~ dh_T/dx vanish at different rates as h_T -> 0, and the pressure they imply grows like
 # 1/h_T^2 without bound (1e9 Pa at 1 mm/s for sigma = 0.05 um, 1e170 Pa at 500 N; the
 # coupled iteration then wanders). Above h = 0, Eqs. 1-2 and DESIGN.md's regularisation
-# below h/sigma = 0.5 apply unchanged.
+# below h/sigma = 0.5 apply unchanged. The same floor bounds the Couette shear gap
+# (friction.py) from below by h_T(0).
 FLUID_FILM_FLOOR_SIGMAS = 0.0
 
 
@@ -484,13 +485,15 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     start = time.perf_counter()
     notes = []
     requested = scene
+    contact = None
     if scene.effects.auto:
-        from .effects import resolve_auto_effects
+        from .effects import auto_effects
 
-        scene, reasons = resolve_auto_effects(scene)
-        notes.append("effects: auto -> " + "; ".join(f"{k}: {v}" for k, v in reasons.items()))
+        decided = auto_effects(scene)
+        scene, contact = decided.scene, decided.contact  # the table the decision built
+        notes.append("effects: auto -> " + "; ".join(f"{k}: {v}" for k, v in decided.reasons.items()))
     with _blas_controller().limit(limits=1, user_api="blas"):
-        model = Model.assemble(scene)
+        model = Model.assemble(scene, contact=contact)
         state, diag = coupled_solve(model, initial)
     if diag["failure"]:
         notes.append("NOT CONVERGED: " + diag["failure"])
@@ -510,7 +513,6 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         shear = fluid_shear_force(
             mesh, state.expected_gap, state.fluid_pressure, state.reynolds.cavitated,
             scene.lubricant.viscosity, scene.operating.speed,
-            model.contact.sigma if model.contact is not None else None,
         )
     force = scene.operating.force
     carried = state.total_force
