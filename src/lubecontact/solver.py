@@ -44,10 +44,6 @@ from .anderson import AndersonMixer
 from .materials import effective_modulus
 from .mesh import Mesh, build_mesh
 
-# Rigid-cylinder, smooth-film estimate of the load per unit length (Martin 1916 with the
-# Reynolds condition; physics.md section 4): w' = 4.9 mu u_m R / h0, u_m = U/2.
-MARTIN_LOAD_COEFFICIENT = 4.9
-
 
 class SolveError(RuntimeError):
     """The force balance failed; ``state`` is the last state evaluated (or None). A solve
@@ -204,9 +200,9 @@ def _film_scale(model: Model) -> float:
     """A length on which the force changes appreciably: sigma, or a rigid Martin film."""
     if model.contact is not None:
         return model.contact.sigma
-    s = model.scene
-    w = s.operating.force / s.geometry.length
-    return MARTIN_LOAD_COEFFICIENT * s.lubricant.viscosity * 0.5 * s.operating.speed * s.geometry.radius / w
+    from .effects import martin_film
+
+    return martin_film(model.scene)
 
 
 # Relative step (in units of the film scale) of the forward differences of h_T(h) and k(h)
