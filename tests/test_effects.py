@@ -43,7 +43,7 @@ def ran(ds) -> set:
 
 # (effect, patched attribute, a scene with the effect on that reaches that code)
 ENTRY_POINTS = [
-    ("asperity_contact", "lubecontact.rough_surface.RoughContact.from_scene",
+    ("asperity_contact", "lubecontact.effects.contact_table",
      {"operating.speed": 10.0, "roughness.sigma": 0.25e-6}),
     ("elastic_deformation", "lubecontact.deformation.ElasticDeformation", {"operating.speed": 0.1}),
     ("hydrodynamics", "lubecontact.reynolds.solve_reynolds", {"operating.speed": 0.1}),
@@ -58,6 +58,7 @@ ENTRY_POINTS = [
 def test_a_disabled_effect_never_runs(monkeypatch, effect, target, setting):
     on = scene(**setting)
     off = on.replace({f"effects.{effect}": False})
+    monkeypatch.setattr("lubecontact.effects._MEMO", {})  # no table cached by an earlier test
     monkeypatch.setattr(target, boom)
     with pytest.raises(AssertionError, match="disabled effect ran"):  # the patch does reach the effect
         lc.solve(on)
