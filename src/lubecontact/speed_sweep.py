@@ -32,6 +32,8 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
         ds, state = solve(point, fields=fields, initial=initial, return_state=True)
         if warm_start and ds["converged"].item() == 1:
             initial = {"z": state.z, "delta": state.delta}
+            if state.reynolds is not None:
+                initial["cavitated"] = state.reynolds.cavitated
         cases.append(ds.drop_vars("speed"))
     out = xr.concat(cases, dim="speed", combine_attrs="drop_conflicts")
     out = out.assign_coords(speed=xr.Variable(("speed",), speeds, {"units": "m s-1", "long_name": "sliding speed U of the block"}))
