@@ -508,7 +508,8 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     if model.hydrodynamic:
         shear = fluid_shear_force(
             mesh, state.expected_gap, state.fluid_pressure, state.reynolds.cavitated,
-            scene.lubricant.viscosity, scene.operating.speed,
+            scene.lubricant.viscosity, scene.operating.speed, film=state.film,
+            sigma=model.contact.sigma if model.contact is not None else None,
         )
     force = scene.operating.force
     carried = state.total_force
