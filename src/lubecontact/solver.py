@@ -147,16 +147,21 @@ class State:
 FLUID_FILM_FLOOR_SIGMAS = 0.0
 
 
-def fluid_film(model: Model, film: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(h_T, k) for the Reynolds equation: Patir-Cheng gap and flow coefficient (Eqs. 1-2)."""
-    from .flow_factors import expected_gap, poiseuille_coefficient
+def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
+    """(h_T, k) for the Reynolds equation: Patir-Cheng gap and flow coefficient (Eqs. 1-2);
+    with ``slopes`` also their derivatives (dh_T/dh, dk/dh) for the adjoint (0 below the floor)."""
+    from .flow_factors import expected_gap, expected_gap_slope, poiseuille_coefficient_and_slope
 
     scene = model.scene
     sigma = model.contact.sigma if model.contact is not None else None
+    held = np.zeros(film.shape, dtype=bool)
     if sigma is not None:
+        held = film < FLUID_FILM_FLOOR_SIGMAS * sigma
         film = np.maximum(film, FLUID_FILM_FLOOR_SIGMAS * sigma)
-    h_t = expected_gap(film, sigma) if sigma is not None else film
-    k = poiseuille_coefficient(film, sigma, scene.lubricant.viscosity, flow_factors=scene.effects.flow_factors)
+    h_t = expected_gap(film, sigma)
+    k, dk = poiseuille_coefficient_and_slope(film, sigma, scene.lubricant.viscosity, scene.effects.flow_factors)
+    if slopes:
+        return h_t, k, np.where(held, 0.0, expected_gap_slope(film, sigma)), np.where(held, 0.0, dk)
     return h_t, k
 
 
@@ -205,12 +210,6 @@ def _film_scale(model: Model) -> float:
     return martin_film(model.scene)
 
 
-# Relative step (in units of the film scale) of the forward differences of h_T(h) and k(h)
-# in force_gradient: their truncation error is ~1e-6 relative, far below what a Newton
-# step on the force balance needs.
-SLOPE_STEP = 1e-6
-
-
 def force_gradient(model: Model, state: State) -> np.ndarray:
     """dF/dh_j, N/m (ny, nx): how the carried load changes with the film at each node, at the
     state's cavitated set: contact dp_c/dh times the nodal area plus the Reynolds adjoint
@@ -221,12 +220,8 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
     if state.reynolds is not None:
         from .reynolds import load_sensitivity
 
-        step = SLOPE_STEP * _film_scale(model)
-        h_t, k = fluid_film(model, state.film + step)
-        gradient += load_sensitivity(
-            model.mesh, state.reynolds, (h_t - state.expected_gap) / step, (k - state.flow_coefficient) / step,
-            model.scene.operating.speed,
-        )
+        _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+        gradient += load_sensitivity(model.mesh, state.reynolds, gap_slope, coefficient_slope, model.scene.operating.speed)
     return gradient
 
 
