@@ -15,6 +15,7 @@ Under the Reynolds cavitation condition the film ruptures where p returns to zer
 dp/dx = 0; beyond it the lubricant flows as Couette streamers carrying the rupture flux
 U h_T*/2, so only the fraction theta = h_T*/h_T of the gap is wetted and the Couette shear
 there is scaled by theta (row by row in y). Upstream of the pressure peak the film is full.
+With mass-conserving cavitation (effects.cavitation: jfo) theta is the solved film content.
 """
 
 from __future__ import annotations
@@ -55,13 +56,15 @@ def shear_stress(film, sigma, pressure_gradient, viscosity: float, speed: float)
     return couette, poiseuille_stress_factor(H) * 0.5 * film * pressure_gradient
 
 
-def fluid_shear_force(mesh, expected_gap, pressure, cavitated, viscosity: float, speed: float, *, film, sigma) -> float:
+def fluid_shear_force(mesh, expected_gap, pressure, cavitated, viscosity: float, speed: float, *, film, sigma,
+                      content=None) -> float:
     """int tau dA over the mesh, in N (positive: resists the sliding of the block).
 
-    ``expected_gap`` h_T (m) gives the wetted fraction of the cavitated zone, ``film`` h (m)
-    and ``sigma`` (m, None for smooth surfaces) the shear stress factors."""
+    ``expected_gap`` h_T (m) gives the wetted fraction of the cavitated zone (or ``content``,
+    the film content theta of a mass-conserving solve), ``film`` h (m) and ``sigma`` (m,
+    None for smooth surfaces) the shear stress factors."""
     dpdx = np.gradient(pressure, mesh.x, axis=1)
-    theta = wetted_fraction(expected_gap, pressure, cavitated)
+    theta = wetted_fraction(expected_gap, pressure, cavitated) if content is None else content
     couette, poiseuille = shear_stress(film, sigma, dpdx, viscosity, speed)
     tau = theta * couette + poiseuille * (~cavitated)
     return float(np.sum(tau * mesh.nodal_area))

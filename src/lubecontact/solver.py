@@ -102,7 +102,7 @@ class Model:
         return {
             "hydrodynamics": self.hydrodynamic,
             "flow_factors": self.hydrodynamic and self.contact is not None and e.flow_factors,
-            "cavitation": self.hydrodynamic and e.cavitation,
+            "cavitation": self.hydrodynamic and e.cavitation != "none",
             "asperity_contact": self.contact is not None,
             "plasticity": self.contact is not None and e.plasticity,
             "elastic_deformation": self.deformation is not None,
@@ -178,13 +178,16 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
     fluid_pressure = np.zeros(mesh.shape)
     h_t = k = reynolds = None
     if model.hydrodynamic:
-        from .reynolds import solve_reynolds
-
         h_t, k = fluid_film(model, film)
-        reynolds = solve_reynolds(
-            mesh, h_t, k, scene.operating.speed, cavitation=scene.effects.cavitation, cavitated_guess=cavitated_guess,
-            reuse=reuse,
-        )
+        if scene.effects.cavitation == "jfo":  # mass-conserving cavitation (cavitation_jfo.py)
+            from .cavitation_jfo import solve_jfo as solve_fluid
+        else:
+            from functools import partial
+
+            from .reynolds import solve_reynolds
+
+            solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds")
+        reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse)
         fluid_pressure = reynolds.pressure
     return State(
         z=z,
@@ -213,15 +216,13 @@ def _film_scale(model: Model) -> float:
 def force_gradient(model: Model, state: State) -> np.ndarray:
     """dF/dh_j, N/m (ny, nx): how the carried load changes with the film at each node, at the
     state's cavitated set: contact dp_c/dh times the nodal area plus the Reynolds adjoint
-    (reynolds.load_sensitivity, one back-substitution). Its sum is dF/dz (< 0)."""
+    (the fluid solution's load_sensitivity, one back-substitution). Its sum is dF/dz (< 0)."""
     gradient = np.zeros(model.mesh.shape)
     if state.contact_slope is not None:
         gradient += state.contact_slope * model.mesh.nodal_area
     if state.reynolds is not None:
-        from .reynolds import load_sensitivity
-
         _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
-        gradient += load_sensitivity(model.mesh, state.reynolds, gap_slope, coefficient_slope, model.scene.operating.speed)
+        gradient += state.reynolds.load_sensitivity(model.mesh, gap_slope, coefficient_slope, model.scene.operating.speed)
     return gradient
 
 
@@ -505,6 +506,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
             mesh, state.expected_gap, state.fluid_pressure, state.reynolds.cavitated,
             scene.lubricant.viscosity, scene.operating.speed, film=state.film,
             sigma=model.contact.sigma if model.contact is not None else None,
+            content=getattr(state.reynolds, "content", None),
         )
     force = scene.operating.force
     carried = state.total_force
@@ -537,6 +539,8 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
             "film_thickness": state.film,
             "deformation": state.delta,
         }
+        if getattr(state.reynolds, "content", None) is not None:  # effects.cavitation: jfo
+            field_data["film_content"] = state.reynolds.content
     ds = case_dataset(requested, scalars, field_data, mesh, model.effects_run, "; ".join(notes))
     if return_state:
         return ds, state
