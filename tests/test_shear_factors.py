@@ -67,3 +67,38 @@ def test_viscous_shear_between_rough_surfaces_exceeds_the_mean_gap_estimate():
     H = np.array([0.5, 1.0, 2.0, 3.0])
     ratio = couette_shear_factor(H) / (1.0 / expected_gap(H, 1.0))
     assert np.all(ratio > 1.1) and np.all(ratio < 1.9)
+
+
+def test_couette_gap_of_unequal_roughness():
+    from lubecontact.flow_factors import expected_gap
+    from lubecontact.shear_factors import couette_gap
+
+    sigma = 0.5e-6
+    h = np.array([-1.0, 0.3, 1.0, 2.0, 4.9, 5.1, 9.0]) * sigma
+    equal, _ = couette_gap(h, sigma, 0.5)
+    np.testing.assert_array_equal(equal, expected_gap(h, sigma))  # phi_s vanishes for equal roughness
+    block, slope = couette_gap(h, sigma, 1.0)  # all roughness on the sliding block: + sigma Phi_s
+    assert block[2] / sigma == pytest.approx(1.08332 + 0.79559, abs=2e-5)  # physics.md #9, #10
+    cylinder, _ = couette_gap(h, sigma, 0.0)
+    np.testing.assert_allclose(0.5 * (block + cylinder), equal, rtol=1e-14)  # odd in the split
+    assert np.all(cylinder > 0.0)
+    step = 1e-7 * sigma
+    central = (couette_gap(h + step, sigma, 1.0)[0] - couette_gap(h - step, sigma, 1.0)[0]) / (2 * step)
+    np.testing.assert_allclose(slope, central, rtol=1e-6)
+
+
+def test_split_is_a_scene_key_that_leaves_equal_roughness_unchanged():
+    import lubecontact as lc
+
+    base = {"operating.speed": 1.0, "mesh.nx": 21, "mesh.ny": 1}
+    table1 = lc.load_scene("config/scenes/table1.yaml", base)
+    assert "split" not in table1.canonical_yaml()
+    equal = table1.replace({"roughness.split": 0.5})
+    assert equal.hash == table1.hash
+    rough_block = table1.replace({"roughness.split": 1.0})
+    assert "split: 1.0" in rough_block.canonical_yaml() and rough_block.hash != table1.hash
+    with pytest.raises(lc.SceneError, match="roughness.split"):
+        lc.load_scene({}, {"roughness.split": 1.5})
+    a, b = lc.solve(table1), lc.solve(rough_block)
+    assert b["converged"].item() == 1
+    assert b["fluid_force"].item() != pytest.approx(a["fluid_force"].item(), rel=1e-3)

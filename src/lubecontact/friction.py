@@ -42,30 +42,36 @@ def wetted_fraction(expected_gap: np.ndarray, pressure: np.ndarray, cavitated: n
     return theta
 
 
-def shear_stress(film, sigma, pressure_gradient, viscosity: float, speed: float) -> tuple[np.ndarray, np.ndarray]:
+def shear_stress(film, sigma, pressure_gradient, viscosity: float, speed: float,
+                 split: float = 0.5) -> tuple[np.ndarray, np.ndarray]:
     """Full-film shear on the moving block (Pa): Couette and Poiseuille parts, (ny, nx) each.
 
-    ``film`` h (m); ``sigma`` None or 0 for smooth surfaces (plain mu U/h + (h/2) dp/dx).
+    ``film`` h (m); ``sigma`` None or 0 for smooth surfaces (plain mu U/h + (h/2) dp/dx);
+    ``split`` the block's share of sigma^2 (phi_fs = (1 - 2 split) Phi_fs, 0 when equal).
     """
-    from .shear_factors import couette_shear_factor, poiseuille_stress_factor
+    from .shear_factors import couette_shear_factor, poiseuille_stress_factor, shear_stress_factor_over_gap
 
     if sigma is None or sigma == 0:
         return viscosity * speed / film, 0.5 * film * pressure_gradient
     H = film / sigma
-    couette = viscosity * speed * couette_shear_factor(H) / sigma
+    factor = couette_shear_factor(H)
+    if split != 0.5:
+        factor = factor + (1.0 - 2.0 * split) * shear_stress_factor_over_gap(H)
+    couette = viscosity * speed * factor / sigma
     return couette, poiseuille_stress_factor(H) * 0.5 * film * pressure_gradient
 
 
 def fluid_shear_force(mesh, expected_gap, pressure, cavitated, viscosity: float, speed: float, *, film, sigma,
-                      content=None) -> float:
+                      content=None, split: float = 0.5) -> float:
     """int tau dA over the mesh, in N (positive: resists the sliding of the block).
 
     ``expected_gap`` h_T (m) gives the wetted fraction of the cavitated zone (or ``content``,
     the film content theta of a mass-conserving solve), ``film`` h (m) and ``sigma`` (m,
-    None for smooth surfaces) the shear stress factors."""
+    None for smooth surfaces) and ``split`` (the block's share of sigma^2) the shear stress
+    factors."""
     dpdx = np.gradient(pressure, mesh.x, axis=1)
     theta = wetted_fraction(expected_gap, pressure, cavitated) if content is None else content
-    couette, poiseuille = shear_stress(film, sigma, dpdx, viscosity, speed)
+    couette, poiseuille = shear_stress(film, sigma, dpdx, viscosity, speed, split)
     tau = theta * couette + poiseuille * (~cavitated)
     return float(np.sum(tau * mesh.nodal_area))
 

@@ -265,6 +265,18 @@ class Roughness(_Section):
     height_std: str = _field(
         "sigma", _Choice(("sigma", "mccool")), "std of asperity heights: sigma (paper) or McCool's sigma_s"
     )
+    split: float = _field(
+        0.5, _Real("1", low=0.0, low_open=False, high=1.0, high_open=False),
+        "share of sigma^2 on the sliding block (the rest on the cylinder): Patir-Cheng shear flow factor",
+    )
+
+    def to_dict(self):
+        """The equal split (the default, where the shear flow factor vanishes) is left out, so
+        that scenes written before the key existed keep their canonical form and hash."""
+        data = super().to_dict()
+        if self.split == 0.5:
+            del data["split"]
+        return data
 
 
 @dataclass(frozen=True)

@@ -19,6 +19,10 @@ surface of a film whose surfaces slide at u1, u2 is
 - Phi_fs and the shear flow factor Phi_s (gamma = 1) enter only for surfaces of unequal
   roughness: phi_fs = V_r2 Phi_fs - V_r1 Phi_fs and phi_s = (V_r1 - V_r2) Phi_s with the
   shares V_ri = sigma_i^2/sigma^2 of the variance (both vanish for equal roughness).
+  Here surface 1 is the sliding block (u1 = U) and surface 2 the cylinder (u2 = 0), and
+  ``roughness.split`` = V_r1, the block's share of sigma^2: the Couette flux becomes
+  (U/2)(h_T + sigma phi_s) (``couette_gap``) and the shear on the block gains
+  mu U phi_fs/h (upper signs of physics.md section 3 for surface 1).
 """
 
 from __future__ import annotations
@@ -70,14 +74,19 @@ def _branches(H, low, high, split_at):
     return np.where(H <= split_at, low(np.minimum(H, split_at)), high(np.maximum(H, split_at)))
 
 
-def shear_stress_factor_unit(H) -> np.ndarray:
-    """Phi_fs(H), gamma = 1: 11.1 H^2.31 exp(-2.38 H + 0.11 H^2) for H < 7, 0 above
-    (fitted for 0.5 < H < 7; below 0.5 it is continued by the same expression, -> 0 at 0)."""
-    def low(x):
-        x = np.maximum(x, 0.0)
-        return 11.1 * x**2.31 * np.exp(-2.38 * x + 0.11 * x * x)
+def shear_stress_factor_over_gap(H) -> np.ndarray:
+    """Phi_fs(H)/H = 11.1 H^1.31 exp(-2.38 H + 0.11 H^2) (0 for H <= 0 and H >= 7): the shear
+    stress it adds is mu U/sigma times this times (V_r2 - V_r1)."""
+    H = np.asarray(H, dtype=float)
+    x = np.clip(H, 0.0, 7.0)
+    return np.where((H > 0.0) & (H < 7.0), 11.1 * x**1.31 * np.exp(-2.38 * x + 0.11 * x * x), 0.0)
 
-    return _branches(H, low, np.zeros_like, 7.0)
+
+def shear_stress_factor_unit(H) -> np.ndarray:
+    """Phi_fs(H), gamma = 1: 11.1 H^2.31 exp(-2.38 H + 0.11 H^2) for H < 7, 0 above (fitted
+    for 0.5 < H < 7; below 0.5 continued by the same expression, -> 0 at H = 0)."""
+    H = np.asarray(H, dtype=float)
+    return H * shear_stress_factor_over_gap(H)
 
 
 def shear_flow_factor_unit(H) -> np.ndarray:
@@ -88,3 +97,23 @@ def shear_flow_factor_unit(H) -> np.ndarray:
         return 1.899 * x**0.98 * np.exp(-0.92 * x + 0.05 * x * x)
 
     return _branches(H, low, lambda x: 1.126 * np.exp(-0.25 * x), 5.0)
+
+
+def shear_flow_factor_slope(H) -> np.ndarray:
+    """dPhi_s/dH of ``shear_flow_factor_unit`` (0 for H <= 0)."""
+    H = np.asarray(H, dtype=float)
+    phi = shear_flow_factor_unit(H)
+    low = phi * (0.98 / np.maximum(H, 1e-300) - 0.92 + 0.1 * H)
+    return np.where(H <= 0.0, 0.0, np.where(H <= 5.0, low, -0.25 * phi))
+
+
+def couette_gap(h, sigma, split):
+    """(h_T + sigma phi_s, its slope in h): the gap whose Couette flux (U/2) x it carries the
+    lubricant between a block with the share ``split`` of sigma^2 and the cylinder, with
+    phi_s = (2 split - 1) Phi_s(h/sigma) (Patir & Cheng 1979, gamma = 1)."""
+    from .flow_factors import expected_gap, expected_gap_slope
+
+    H = np.asarray(h, dtype=float) / sigma
+    weight = 2.0 * split - 1.0
+    gap = expected_gap(h, sigma) + sigma * weight * shear_flow_factor_unit(H)
+    return gap, expected_gap_slope(h, sigma) + weight * shear_flow_factor_slope(H)

@@ -149,7 +149,9 @@ FLUID_FILM_FLOOR_SIGMAS = 0.0
 
 def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
     """(h_T, k) for the Reynolds equation: Patir-Cheng gap and flow coefficient (Eqs. 1-2);
-    with ``slopes`` also their derivatives (dh_T/dh, dk/dh) for the adjoint (0 below the floor)."""
+    with ``slopes`` also their derivatives (dh_T/dh, dk/dh) for the adjoint (0 below the floor).
+    With flow factors between surfaces of unequal roughness (roughness.split != 0.5) the gap
+    is the Couette gap h_T + sigma phi_s of the shear flow factor (shear_factors.couette_gap)."""
     from .flow_factors import expected_gap, expected_gap_slope, poiseuille_coefficient_and_slope
 
     scene = model.scene
@@ -158,10 +160,15 @@ def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
     if sigma is not None:
         held = film < FLUID_FILM_FLOOR_SIGMAS * sigma
         film = np.maximum(film, FLUID_FILM_FLOOR_SIGMAS * sigma)
-    h_t = expected_gap(film, sigma)
     k, dk = poiseuille_coefficient_and_slope(film, sigma, scene.lubricant.viscosity, scene.effects.flow_factors)
+    if sigma is not None and scene.effects.flow_factors and scene.roughness.split != 0.5:
+        from .shear_factors import couette_gap
+
+        h_t, dh_t = couette_gap(film, sigma, scene.roughness.split)
+    else:
+        h_t, dh_t = expected_gap(film, sigma), expected_gap_slope(film, sigma)
     if slopes:
-        return h_t, k, np.where(held, 0.0, expected_gap_slope(film, sigma)), np.where(held, 0.0, dk)
+        return h_t, k, np.where(held, 0.0, dh_t), np.where(held, 0.0, dk)
     return h_t, k
 
 
@@ -506,7 +513,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
             mesh, state.expected_gap, state.fluid_pressure, state.reynolds.cavitated,
             scene.lubricant.viscosity, scene.operating.speed, film=state.film,
             sigma=model.contact.sigma if model.contact is not None else None,
-            content=getattr(state.reynolds, "content", None),
+            content=getattr(state.reynolds, "content", None), split=scene.roughness.split,
         )
     force = scene.operating.force
     carried = state.total_force
