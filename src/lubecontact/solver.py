@@ -137,13 +137,16 @@ class State:
 
 
 # Where the mean planes interpenetrate (h < 0) the fluid sees the gap frozen at its h = 0
-# value (h_T = sigma/sqrt(2 pi)): the lubricant then flows only through the valley network.
-# Without this floor the regularised flow coefficient k ~ h_T^3 and the Couette source
-# ~ dh_T/dx vanish at different rates as h_T -> 0, and the pressure they imply grows like
-# 1/h_T^2 without bound (1e9 Pa at 1 mm/s for sigma = 0.05 um, 1e170 Pa at 500 N; the
-# coupled iteration then wanders). Above h = 0, Eqs. 1-2 and DESIGN.md's regularisation
-# below h/sigma = 0.5 apply unchanged. The same floor bounds the Couette shear gap
-# (friction.py) from below by h_T(0).
+# value (h_T = sigma/sqrt(2 pi)). For the film content there is a physical reason: below the
+# percolation threshold of a Gaussian gap (h = 0, flow_factors.py) the lubricant sits in
+# closed pockets, incompressible, and is carried through the contact with the volume it was
+# sealed with, so its Couette content stops following h_T(h). For the Poiseuille coefficient
+# there is none: k is held at its h = 0 value where percolation would make it 0. Setting
+# k = 0 there (with the pockets at p = 0, or carrying the pressure of the film edge they
+# were sealed at) made the coupled solve bistable or cycle between sealed sets on 51^2
+# Table 1 meshes (bench/RESULTS_flow.md); the plain regularisation without any floor gives
+# pressures ~ 1/h_T^2 (1e9-1e170 Pa) and no solution. Friction does not use this floor
+# (friction.py: Patir-Cheng shear factors are finite for h <= 0).
 FLUID_FILM_FLOOR_SIGMAS = 0.0
 
 
