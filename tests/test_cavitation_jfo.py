@@ -92,6 +92,15 @@ def test_couette_transport_through_a_cavitated_diverging_gap():
     assert not jfo.pressure.any()
 
 
+def test_reversed_sliding_mirrors_the_solution():
+    mesh, h, k = line(two_contacts, -4.0, 12.0, 401)
+    forward = solve_jfo(mesh, h, k, U)
+    backward = solve_jfo(mesh, h[:, ::-1], k[:, ::-1], -U)
+    assert backward.converged
+    np.testing.assert_allclose(backward.pressure[:, ::-1], forward.pressure, rtol=0, atol=1e-9 * forward.pressure.max())
+    np.testing.assert_allclose(backward.content[:, ::-1], forward.content, rtol=0, atol=1e-9)
+
+
 def test_uniform_gap_flows_as_couette():
     mesh, h, k = line(lambda x: np.full_like(x, H0), -1.0, 1.0, 41)
     jfo = solve_jfo(mesh, h, k, U)

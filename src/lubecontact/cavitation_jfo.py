@@ -18,7 +18,7 @@ boundary p = 0), with the Couette flux of each x face upwinded in theta,
     F_f = (U/2) dy h_T,f theta_up(f)      (h_T,f the mean of the face's nodes),
 
 so in the full film the equations are reynolds.py's exactly. Boundary nodes supply a full
-film (theta = 1: flooded inlet).
+film (theta = 1: flooded inlet, at x_min for U > 0 and at x_max for U < 0).
 
 Solver: a primal-dual active-set method on the universal variable, in the spirit of
 reynolds.py: each node is pressurised (unknown p, theta = 1) or cavitated (unknown theta,
@@ -63,7 +63,7 @@ class JFOSolution:
     pressure: np.ndarray  # (ny, nx) Pa; 0 on the boundary and in the cavitated zone
     content: np.ndarray  # (ny, nx) theta, film content in [0, 1]; 1 in the full film and on the boundary
     cavitated: np.ndarray  # (ny, nx) bool; interior nodes held at p = 0 (boundary False)
-    iterations: int  # active-set steps (linear solves), the cold start's Reynolds solve not counted
+    iterations: int  # active-set steps (linear solves) on this mesh, the nested cold start not counted
     residual: float  # max relative violation of the mass balance and the complementarity
     converged: bool
     factor: object | None = None  # LU factors of the last system, for load_sensitivity
@@ -166,12 +166,13 @@ def _cold_guess(mesh, expected_gap, coefficient, speed, storage, max_iterations)
 
 
 def solve_jfo(mesh, expected_gap, coefficient, speed, cavitated_guess=None, max_iterations=100,
-              storage=None, **_ignored) -> JFOSolution:
+              storage=None, reuse=None) -> JFOSolution:
     """Pressure and film content of the JFO problem (module docstring), p = 0 on the boundary.
 
     ``cavitated_guess`` (ny, nx) bool warm-starts the active set (else the nested cold
     start: module docstring); ``storage`` = (capacity, history) (ny, nx) m^3/s for a transient.
-    Keywords of reynolds.solve_reynolds that do not apply (``reuse``) are accepted and ignored.
+    ``reuse`` is accepted for the call signature of reynolds.solve_reynolds and not used (the
+    non-symmetric system is factorised at every step).
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
