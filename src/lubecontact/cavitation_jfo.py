@@ -42,10 +42,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
+from scipy.sparse.linalg import LinearOperator, gmres, splu
 
 from .reynolds import (
     RESIDUAL_TOLERANCE,
+    REUSE_CG_STEPS,
+    REUSE_CG_TOLERANCE,
     SET_TOLERANCE,
     _coarser,
     _interior,
@@ -66,7 +68,7 @@ class JFOSolution:
     iterations: int  # active-set steps (linear solves) on this mesh, the nested cold start not counted
     residual: float  # max relative violation of the mass balance and the complementarity
     converged: bool
-    factor: object | None = None  # LU factors of the last system, for load_sensitivity
+    factor: object | None = None  # SystemInverse of the last step, for load_sensitivity and reuse
     face_content: np.ndarray | None = None  # (ny, nx-1) theta upwind of each x face
     unknown: np.ndarray | None = None  # (ny, nx) bool, the nodes of the system
 
@@ -116,15 +118,42 @@ def _face_content(mesh, content, speed):
     return content[:, :-1] if speed >= 0.0 else content[:, 1:]
 
 
-def _step(A, G, g0, capacity, history, cavitated):
-    """One linear solve on the set ``cavitated``: (x, LU), x = p (pressurised) or theta (cavitated)."""
-    n = A.shape[0]
+class SystemInverse:
+    """Solves with the JFO system matrix M of one active-set step (or its transpose): by its
+    own LU factors, or, given the factors of a nearby matrix (``preconditioner``: the previous
+    evaluation of a coupled iteration, same set), by GMRES preconditioned with them,
+    factorising M only if that does not converge within REUSE_CG_STEPS steps."""
+
+    def __init__(self, matrix, preconditioner=None):
+        self.matrix = matrix  # csc
+        self.preconditioner = preconditioner
+        self.lu = splu(matrix, permc_spec="COLAMD") if preconditioner is None else None
+
+    @property
+    def factors(self):
+        return self.lu if self.lu is not None else self.preconditioner
+
+    def solve(self, rhs, trans="N"):
+        if self.lu is None:
+            operator = self.matrix if trans == "N" else self.matrix.T
+            approximate = LinearOperator(operator.shape, matvec=lambda r: self.preconditioner.solve(r, trans=trans))
+            x, _ = gmres(operator, rhs, M=approximate, rtol=REUSE_CG_TOLERANCE, atol=0.0,
+                         restart=REUSE_CG_STEPS, maxiter=1)
+            if np.linalg.norm(operator @ x - rhs) <= 10.0 * REUSE_CG_TOLERANCE * np.linalg.norm(rhs):
+                return x
+            self.lu = splu(self.matrix, permc_spec="COLAMD")
+        return self.lu.solve(rhs, trans=trans)
+
+
+def _step(A, G, g0, capacity, history, cavitated, preconditioner=None):
+    """One linear solve on the set ``cavitated``: (x, SystemInverse), x = p (pressurised) or
+    theta (cavitated)."""
     free = (~cavitated).astype(float)
     couette = G + sp.diags(capacity)
     matrix = (A @ sp.diags(free) + couette @ sp.diags(cavitated.astype(float))).tocsc()
     rhs = -g0 - couette @ free + history
-    lu = splu(matrix, permc_spec="COLAMD")
-    return lu.solve(rhs), lu
+    inverse = SystemInverse(matrix, preconditioner)
+    return inverse.solve(rhs), inverse
 
 
 def _residual(A, G, g0, capacity, history, p, theta):
@@ -171,8 +200,9 @@ def solve_jfo(mesh, expected_gap, coefficient, speed, cavitated_guess=None, max_
 
     ``cavitated_guess`` (ny, nx) bool warm-starts the active set (else the nested cold
     start: module docstring); ``storage`` = (capacity, history) (ny, nx) m^3/s for a transient.
-    ``reuse`` is accepted for the call signature of reynolds.solve_reynolds and not used (the
-    non-symmetric system is factorised at every step).
+    ``reuse``: the solution of a nearby problem on the same mesh (the previous evaluation of
+    a coupled iteration); when the first step is on its active set, it runs by GMRES
+    preconditioned with its LU factors (SystemInverse) instead of a new factorisation.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
@@ -192,11 +222,15 @@ def solve_jfo(mesh, expected_gap, coefficient, speed, cavitated_guess=None, max_
     p = np.zeros(n)
     theta = np.ones(n)
     lu, repeated = None, False
+    reused = None
+    if isinstance(reuse, JFOSolution) and reuse.factor is not None and np.array_equal(reuse.unknown, unknown) \
+            and np.array_equal(reuse.cavitated[unknown], cavitated):
+        reused = reuse.factor.factors
     for iterations in range(1, max_iterations + 1):
         if n == 0:
             repeated = True
             break
-        x, lu = _step(A, G, g0, capacity, history, cavitated)
+        x, lu = _step(A, G, g0, capacity, history, cavitated, reused if iterations == 1 else None)
         p = np.where(cavitated, 0.0, x)
         theta = np.where(cavitated, x, 1.0)
         p_tol = SET_TOLERANCE * np.abs(p).max(initial=0.0)
