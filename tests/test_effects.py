@@ -122,6 +122,7 @@ def test_flow_factors_off_is_phi_equal_one(monkeypatch):
     with_phi = lc.solve(scene(**{"operating.speed": 0.1}))
     assert with_phi["contact_resistance"].item() != pytest.approx(off["contact_resistance"].item(), rel=1e-3)
     monkeypatch.setattr("lubecontact.flow_factors.pressure_flow_factor", lambda h: np.ones_like(np.asarray(h, float)))
+    monkeypatch.setattr("lubecontact.flow_factors.pressure_flow_factor_slope", lambda h: np.zeros_like(np.asarray(h, float)))
     unit_phi = lc.solve(scene(**{"operating.speed": 0.1}))
     for name in SCALARS:
         assert off[name].item() == pytest.approx(unit_phi[name].item(), rel=1e-9)

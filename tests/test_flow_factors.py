@@ -111,3 +111,17 @@ def test_extreme_interference_stays_finite():
     H = np.array([-1e6, -200.0, -21.0])
     assert np.all(np.isfinite(poiseuille_coefficient(H * SIGMA, SIGMA, MU)))
     assert np.all(poiseuille_coefficient(H * SIGMA, SIGMA, MU) >= 0.0)
+
+
+@pytest.mark.parametrize("flow_factors", [True, False])
+def test_analytic_slopes_match_central_differences(flow_factors):
+    from lubecontact.flow_factors import expected_gap_slope, poiseuille_coefficient_and_slope
+
+    H = np.array([-6.0, -1.0, 0.0, 0.3, 0.49, 0.51, 1.0, 3.0, 12.0])
+    step = 1e-6 * SIGMA
+    k, dk = poiseuille_coefficient_and_slope(H * SIGMA, SIGMA, MU, flow_factors)
+    plus = poiseuille_coefficient(H * SIGMA + step, SIGMA, MU, flow_factors)
+    minus = poiseuille_coefficient(H * SIGMA - step, SIGMA, MU, flow_factors)
+    np.testing.assert_allclose(dk, (plus - minus) / (2 * step), rtol=1e-6)
+    gap = (expected_gap(H * SIGMA + step, SIGMA) - expected_gap(H * SIGMA - step, SIGMA)) / (2 * step)
+    np.testing.assert_allclose(expected_gap_slope(H * SIGMA, SIGMA), gap, rtol=1e-6)

@@ -140,9 +140,10 @@ def assert_stable_curve(ds):
     assert np.all(np.diff(ds["real_contact_area"].values) <= 1e-20)
 
 
+@pytest.mark.parametrize("cavitation", ["reynolds", "jfo"])
 @pytest.mark.parametrize("key, value", HARD, ids=[f"{k}={v:g}" for k, v in HARD])
-def test_hard_cases_stay_numerically_stable(key, value):
-    s = scene(**{key: value, "mesh.nx": 21, "mesh.ny": 11, "solver.tolerance": 1e-7})
+def test_hard_cases_stay_numerically_stable(key, value, cavitation):
+    s = scene(**{key: value, "mesh.nx": 21, "mesh.ny": 11, "solver.tolerance": 1e-7, "effects.cavitation": cavitation})
     assert_stable_curve(lc.sweep(s, HARD_SPEEDS, warm_start=False, progress=False))
 
 

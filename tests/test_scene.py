@@ -121,7 +121,7 @@ def test_dotted_overrides():
         {"roughness.sigma": "1e-6", "effects.hydrodynamics": "false", "mesh.nx": "101", "operating.speed": 2},
     )
     assert scene.roughness.sigma == 1e-6
-    assert scene.effects.hydrodynamics is False and scene.effects.cavitation is True
+    assert scene.effects.hydrodynamics is False and scene.effects.cavitation == "reynolds"
     assert scene.mesh.nx == 101 and scene.operating.speed == 2.0
     assert scene.geometry.radius == 0.01  # untouched keys keep their values
 
@@ -165,8 +165,8 @@ def test_canonical_yaml_sorted_and_complete():
 def test_effects_auto():
     scene = load_scene({"effects": "auto"})
     assert scene.effects.auto is True
-    flags = [getattr(scene.effects, k) for k in TABLE1["effects"]]
-    assert flags == [True] * 7
+    flags = {k: getattr(scene.effects, k) for k in TABLE1["effects"]}
+    assert flags == {k: "reynolds" if k == "cavitation" else True for k in TABLE1["effects"]}
     assert "effects: auto" in scene.canonical_yaml()
     assert scene.hash != load_scene({}).hash  # auto is a distinct case
     assert load_scene({}, {"effects": "auto"}) == scene

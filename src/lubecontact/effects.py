@@ -290,9 +290,10 @@ def fluid_share_bound(scene, dry: DryContact, sigma: float) -> tuple[float, floa
     film at h = 0), and beyond it the gap (|x| - a)^2/2R, which opens more slowly than the
     gap around a flattened contact; the scene's flow model (Patir-Cheng expected gap and flow
     factors, Eqs. 1-2); 1D Reynolds with the Reynolds exit condition (no side leakage); the
-    Couette shear mu U / max(h_T, sigma/sqrt(2 pi)) as the solver's friction.
+    Couette shear mu U phi_f/h of Patir & Cheng (1979) as the solver's friction.
     """
     from .flow_factors import expected_gap, poiseuille_coefficient
+    from .shear_factors import couette_shear_factor
 
     s = scene
     radius, length, force = s.geometry.radius, s.geometry.length, s.operating.force
@@ -304,8 +305,7 @@ def fluid_share_bound(scene, dry: DryContact, sigma: float) -> tuple[float, floa
     h_t = expected_gap(film, sigma)
     k = poiseuille_coefficient(film, sigma, mu, flow_factors=s.effects.flow_factors)
     load = reynolds_line_load(x, h_t, k, speed) * length
-    couette_gap = np.maximum(h_t, sigma / math.sqrt(2.0 * math.pi))  # the solver's valley floor
-    shear = float(np.trapezoid(mu * speed / couette_gap, x)) * length
+    shear = float(np.trapezoid(mu * speed * couette_shear_factor(film / sigma) / sigma, x)) * length  # as friction.py
     return load / force, shear / force
 
 

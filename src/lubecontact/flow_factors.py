@@ -70,8 +70,22 @@ def pressure_flow_factor(H):
     return 1.0 - PC_C * np.exp(-PC_R * np.asarray(H, dtype=float))
 
 
-def poiseuille_coefficient(h, sigma, viscosity, flow_factors=True):
-    """Poiseuille coefficient k of the averaged Reynolds equation (Eq. 1), m^3/(Pa s).
+def expected_gap_slope(h, sigma):
+    """dh_T/dh = Phi(H), the fraction of the gap that is open (1 for smooth surfaces)."""
+    h = np.asarray(h, dtype=float)
+    if _smooth(sigma):
+        return np.ones_like(h)
+    return ndtr(h / sigma)
+
+
+def pressure_flow_factor_slope(H):
+    """d phi_x/dH of Eq. (2): 0.90 x 0.56 exp(-0.56 H)."""
+    return PC_C * PC_R * np.exp(-PC_R * np.asarray(H, dtype=float))
+
+
+def poiseuille_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
+    """(k, dk/dh): the Poiseuille coefficient of the averaged Reynolds equation (Eq. 1),
+    m^3/(Pa s), and its derivative in the film, m^2/(Pa s), for the Newton/adjoint steps.
 
     k = phi_x(H) h^3/(12 mu) for H = h/sigma >= 0.5 and k(0.5) [h_T(H)/h_T(0.5)]^3 below
     (continuous, positive, monotone in H). ``flow_factors=False`` sets phi_x = 1 (plain
@@ -85,14 +99,27 @@ def poiseuille_coefficient(h, sigma, viscosity, flow_factors=True):
                 f"smooth surfaces need a positive film everywhere; min h = {np.min(h):.3g} m "
                 "(the solid bodies interpenetrate without asperity contact)"
             )
-        return h**3 / (12.0 * viscosity)
-
-    def factor(H):
-        return pressure_flow_factor(H) if flow_factors else np.ones_like(H)
+        return h**3 / (12.0 * viscosity), h**2 / (4.0 * viscosity)
 
     H = h / sigma
-    k_valid = factor(H_VALID) * (H_VALID * sigma) ** 3 / (12.0 * viscosity)
     H_upper = np.maximum(H, H_VALID)  # evaluate the fit only where it applies (no overflow)
-    upper = factor(H_upper) * (H_upper * sigma) ** 3 / (12.0 * viscosity)
-    lower = k_valid * (_mean_gap_ratio(H) / _mean_gap_ratio(H_VALID)) ** 3
-    return np.where(H >= H_VALID, upper, lower)
+    if flow_factors:
+        phi, dphi = pressure_flow_factor(H_upper), pressure_flow_factor_slope(H_upper)
+        phi_valid = pressure_flow_factor(H_VALID)
+    else:
+        phi, dphi, phi_valid = np.ones_like(H_upper), np.zeros_like(H_upper), 1.0
+    cube = sigma**3 / (12.0 * viscosity)
+    upper = phi * H_upper**3 * cube
+    upper_slope = (dphi * H_upper**3 + 3.0 * phi * H_upper**2) * cube / sigma
+    gap_ratio = _mean_gap_ratio(H) / _mean_gap_ratio(H_VALID)
+    lower = phi_valid * H_VALID**3 * cube * gap_ratio**3
+    # d/dh of k(0.5) (h_T/h_T(0.5))^3 = 3 k Phi(H) / h_T (0 where h_T underflowed)
+    h_t = sigma * _mean_gap_ratio(H)
+    lower_slope = np.divide(3.0 * lower * ndtr(H), h_t, out=np.zeros_like(h_t), where=h_t > 0.0)
+    above = H >= H_VALID
+    return np.where(above, upper, lower), np.where(above, upper_slope, lower_slope)
+
+
+def poiseuille_coefficient(h, sigma, viscosity, flow_factors=True):
+    """k of ``poiseuille_coefficient_and_slope``, m^3/(Pa s)."""
+    return poiseuille_coefficient_and_slope(h, sigma, viscosity, flow_factors)[0]

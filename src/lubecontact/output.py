@@ -36,6 +36,7 @@ FIELDS = {
     "contact_pressure": ("Pa", "nominal asperity contact pressure (Eq. 11 per nominal area)"),
     "film_thickness": ("m", "mean-plane separation h = h_o + z + delta (Eq. 3)"),
     "deformation": ("m", "macro elastic deformation delta of both surfaces (influence coefficients)"),
+    "film_content": ("1", "film content theta: fraction of the expected gap filled (effects.cavitation: jfo only)"),
 }
 
 INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes")

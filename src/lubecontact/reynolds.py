@@ -83,6 +83,10 @@ class ReynoldsSolution:
     # no node is pressurised
     factor: object | None = None
 
+    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed) -> np.ndarray:
+        """dW/dh_j (N/m) at this solution: module function load_sensitivity."""
+        return load_sensitivity(mesh, self, gap_slope, coefficient_slope, speed)
+
 
 @dataclass(frozen=True)
 class ReynoldsSystem:
@@ -417,19 +421,28 @@ def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed) -> np.
     with h too, but where it meets the pressurised set p = 0 and grad p = 0 (Reynolds
     condition), so that motion does not change W to first order.
     """
-    sensitivity = np.zeros(mesh.shape)
     if solution.factor is None:
-        return sensitivity
+        return np.zeros(mesh.shape)
     free = _interior(mesh.shape, mesh.line) & ~solution.cavitated
     adjoint = np.zeros(mesh.shape)
     adjoint[free] = solution.factor.solve(mesh.nodal_area[free])
-    p = solution.pressure
+    return adjoint_sensitivity(mesh, adjoint, solution.pressure, gap_slope, coefficient_slope, speed)
+
+
+def adjoint_sensitivity(mesh, adjoint, pressure, gap_slope, coefficient_slope, speed, face_content=None):
+    """-lambda^T dr/dh_j (ny, nx) for the adjoint ``adjoint`` (nodal, 0 off the unknowns) of
+    the finite-volume residual r: Poiseuille faces T_f (p_a - p_b), Couette x faces
+    c_f theta_f (a the node before b; ``face_content`` theta_f (ny, nx-1), 1 if None), with
+    T_f and c_f face means of nodal k and h_T, so each face passes half its derivative to
+    each of its nodes (see load_sensitivity)."""
+    p = pressure
     coefficient_part = np.zeros(mesh.shape)
     couette_part = np.zeros(mesh.shape)
     jump_x = adjoint[:, :-1] - adjoint[:, 1:]
+    content = 1.0 if face_content is None else face_content
     for part, face in (
         (coefficient_part, 0.5 * (mesh.dy / mesh.dx) * jump_x * (p[:, :-1] - p[:, 1:])),
-        (couette_part, 0.25 * speed * mesh.dy * jump_x),
+        (couette_part, 0.25 * speed * mesh.dy * jump_x * content),
     ):
         part[:, :-1] += face
         part[:, 1:] += face

@@ -172,6 +172,27 @@ class _Choice:
 
 
 @dataclass(frozen=True)
+class _FlagOrChoice:
+    """One of ``options``; ``true``/``false`` (the older boolean form) stand for
+    ``options[0]``/``options[-1]``, and those two are written back as true/false, so that a
+    scene's canonical form (and hash) is what it was before the choice had more options."""
+
+    options: tuple[str, ...]
+
+    @property
+    def allowed(self) -> str:
+        return "true, false or " + _Choice(self.options).allowed
+
+    def __call__(self, value) -> str:
+        if isinstance(value, bool):
+            return self.options[0] if value else self.options[-1]
+        return _Choice(self.options)(value)
+
+    def dump(self, value):
+        return {self.options[0]: True, self.options[-1]: False}.get(value, value)
+
+
+@dataclass(frozen=True)
 class _AutoOr:
     """'auto' (stored as None: the code chooses) or a value of the inner rule."""
 
@@ -244,6 +265,18 @@ class Roughness(_Section):
     height_std: str = _field(
         "sigma", _Choice(("sigma", "mccool")), "std of asperity heights: sigma (paper) or McCool's sigma_s"
     )
+    split: float = _field(
+        0.5, _Real("1", low=0.0, low_open=False, high=1.0, high_open=False),
+        "share of sigma^2 on the sliding block (the rest on the cylinder): Patir-Cheng shear flow factor",
+    )
+
+    def to_dict(self):
+        """The equal split (the default, where the shear flow factor vanishes) is left out, so
+        that scenes written before the key existed keep their canonical form and hash."""
+        data = super().to_dict()
+        if self.split == 0.5:
+            del data["split"]
+        return data
 
 
 @dataclass(frozen=True)
@@ -273,7 +306,10 @@ class Effects(_Section):
 
     hydrodynamics: bool = _field(True, _Flag(), "modified Reynolds fluid pressure (Eq. 1)")
     flow_factors: bool = _field(True, _Flag(), "Patir-Cheng flow factors (Eq. 2)")
-    cavitation: bool = _field(True, _Flag(), "Swift-Stieber condition p >= 0")
+    cavitation: str = _field(
+        "reynolds", _FlagOrChoice(("reynolds", "jfo", "none")),
+        "reynolds: Swift-Stieber p >= 0 (true); jfo: mass-conserving JFO with film content; none: full Sommerfeld (false)",
+    )
     asperity_contact: bool = _field(True, _Flag(), "statistical rough contact (Eqs. 6-13)")
     plasticity: bool = _field(True, _Flag(), "Jackson-Green elastic-plastic asperities")
     elastic_deformation: bool = _field(True, _Flag(), "macro deformation by influence coefficients")

@@ -102,7 +102,7 @@ class Model:
         return {
             "hydrodynamics": self.hydrodynamic,
             "flow_factors": self.hydrodynamic and self.contact is not None and e.flow_factors,
-            "cavitation": self.hydrodynamic and e.cavitation,
+            "cavitation": self.hydrodynamic and e.cavitation != "none",
             "asperity_contact": self.contact is not None,
             "plasticity": self.contact is not None and e.plasticity,
             "elastic_deformation": self.deformation is not None,
@@ -137,26 +137,41 @@ class State:
 
 
 # Where the mean planes interpenetrate (h < 0) the fluid sees the gap frozen at its h = 0
-# value (h_T = sigma/sqrt(2 pi)): the lubricant then flows only through the valley network.
-# Without this floor the regularised flow coefficient k ~ h_T^3 and the Couette source
-# ~ dh_T/dx vanish at different rates as h_T -> 0, and the pressure they imply grows like
-# 1/h_T^2 without bound (1e9 Pa at 1 mm/s for sigma = 0.05 um, 1e170 Pa at 500 N; the
-# coupled iteration then wanders). Above h = 0, Eqs. 1-2 and DESIGN.md's regularisation
-# below h/sigma = 0.5 apply unchanged. The same floor bounds the Couette shear gap
-# (friction.py) from below by h_T(0).
+# value (h_T = sigma/sqrt(2 pi)). For the film content there is a physical reason: below the
+# percolation threshold of a Gaussian gap (h = 0, flow_factors.py) the lubricant sits in
+# closed pockets, incompressible, and is carried through the contact with the volume it was
+# sealed with, so its Couette content stops following h_T(h). For the Poiseuille coefficient
+# there is none: k is held at its h = 0 value where percolation would make it 0. Setting
+# k = 0 there (with the pockets at p = 0, or carrying the pressure of the film edge they
+# were sealed at) made the coupled solve bistable or cycle between sealed sets on 51^2
+# Table 1 meshes (bench/RESULTS_flow.md); the plain regularisation without any floor gives
+# pressures ~ 1/h_T^2 (1e9-1e170 Pa) and no solution. Friction does not use this floor
+# (friction.py: Patir-Cheng shear factors are finite for h <= 0).
 FLUID_FILM_FLOOR_SIGMAS = 0.0
 
 
-def fluid_film(model: Model, film: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(h_T, k) for the Reynolds equation: Patir-Cheng gap and flow coefficient (Eqs. 1-2)."""
-    from .flow_factors import expected_gap, poiseuille_coefficient
+def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
+    """(h_T, k) for the Reynolds equation: Patir-Cheng gap and flow coefficient (Eqs. 1-2);
+    with ``slopes`` also their derivatives (dh_T/dh, dk/dh) for the adjoint (0 below the floor).
+    With flow factors between surfaces of unequal roughness (roughness.split != 0.5) the gap
+    is the Couette gap h_T + sigma phi_s of the shear flow factor (shear_factors.couette_gap)."""
+    from .flow_factors import expected_gap, expected_gap_slope, poiseuille_coefficient_and_slope
 
     scene = model.scene
     sigma = model.contact.sigma if model.contact is not None else None
+    held = np.zeros(film.shape, dtype=bool)
     if sigma is not None:
+        held = film < FLUID_FILM_FLOOR_SIGMAS * sigma
         film = np.maximum(film, FLUID_FILM_FLOOR_SIGMAS * sigma)
-    h_t = expected_gap(film, sigma) if sigma is not None else film
-    k = poiseuille_coefficient(film, sigma, scene.lubricant.viscosity, flow_factors=scene.effects.flow_factors)
+    k, dk = poiseuille_coefficient_and_slope(film, sigma, scene.lubricant.viscosity, scene.effects.flow_factors)
+    if sigma is not None and scene.effects.flow_factors and scene.roughness.split != 0.5:
+        from .shear_factors import couette_gap
+
+        h_t, dh_t = couette_gap(film, sigma, scene.roughness.split)
+    else:
+        h_t, dh_t = expected_gap(film, sigma), expected_gap_slope(film, sigma)
+    if slopes:
+        return h_t, k, np.where(held, 0.0, dh_t), np.where(held, 0.0, dk)
     return h_t, k
 
 
@@ -173,13 +188,16 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
     fluid_pressure = np.zeros(mesh.shape)
     h_t = k = reynolds = None
     if model.hydrodynamic:
-        from .reynolds import solve_reynolds
-
         h_t, k = fluid_film(model, film)
-        reynolds = solve_reynolds(
-            mesh, h_t, k, scene.operating.speed, cavitation=scene.effects.cavitation, cavitated_guess=cavitated_guess,
-            reuse=reuse,
-        )
+        if scene.effects.cavitation == "jfo":  # mass-conserving cavitation (cavitation_jfo.py)
+            from .cavitation_jfo import solve_jfo as solve_fluid
+        else:
+            from functools import partial
+
+            from .reynolds import solve_reynolds
+
+            solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds")
+        reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse)
         fluid_pressure = reynolds.pressure
     return State(
         z=z,
@@ -205,28 +223,16 @@ def _film_scale(model: Model) -> float:
     return martin_film(model.scene)
 
 
-# Relative step (in units of the film scale) of the forward differences of h_T(h) and k(h)
-# in force_gradient: their truncation error is ~1e-6 relative, far below what a Newton
-# step on the force balance needs.
-SLOPE_STEP = 1e-6
-
-
 def force_gradient(model: Model, state: State) -> np.ndarray:
     """dF/dh_j, N/m (ny, nx): how the carried load changes with the film at each node, at the
     state's cavitated set: contact dp_c/dh times the nodal area plus the Reynolds adjoint
-    (reynolds.load_sensitivity, one back-substitution). Its sum is dF/dz (< 0)."""
+    (the fluid solution's load_sensitivity, one back-substitution). Its sum is dF/dz (< 0)."""
     gradient = np.zeros(model.mesh.shape)
     if state.contact_slope is not None:
         gradient += state.contact_slope * model.mesh.nodal_area
     if state.reynolds is not None:
-        from .reynolds import load_sensitivity
-
-        step = SLOPE_STEP * _film_scale(model)
-        h_t, k = fluid_film(model, state.film + step)
-        gradient += load_sensitivity(
-            model.mesh, state.reynolds, (h_t - state.expected_gap) / step, (k - state.flow_coefficient) / step,
-            model.scene.operating.speed,
-        )
+        _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+        gradient += state.reynolds.load_sensitivity(model.mesh, gap_slope, coefficient_slope, model.scene.operating.speed)
     return gradient
 
 
@@ -522,7 +528,9 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     if model.hydrodynamic:
         shear = fluid_shear_force(
             mesh, state.expected_gap, state.fluid_pressure, state.reynolds.cavitated,
-            scene.lubricant.viscosity, scene.operating.speed,
+            scene.lubricant.viscosity, scene.operating.speed, film=state.film,
+            sigma=model.contact.sigma if model.contact is not None else None,
+            content=getattr(state.reynolds, "content", None), split=scene.roughness.split,
         )
     force = scene.operating.force
     carried = state.total_force
@@ -555,6 +563,8 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
             "film_thickness": state.film,
             "deformation": state.delta,
         }
+        if getattr(state.reynolds, "content", None) is not None:  # effects.cavitation: jfo
+            field_data["film_content"] = state.reynolds.content
     ds = case_dataset(requested, scalars, field_data, mesh, model.effects_run, "; ".join(notes))
     if return_state:
         return ds, state
