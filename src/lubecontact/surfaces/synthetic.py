@@ -1,8 +1,8 @@
 """Seeded isotropic random surfaces with a known spectrum (tests and the shipped samples).
 
 A periodic n x n map of side L is the sum of the grid's Fourier modes q = 2 pi (i, j) / L
-with amplitude sqrt(C(|q|) dq^2) and independent random phases (the seed), so its mean
-square is the sum of C over the grid and its statistics follow the isotropic areal power
+with amplitude sqrt(C(|q|) dq^2) and random phases (the seed; phase(-q) = -phase(q), so
+the heights are real), so its mean square is the sum of C dq^2 over the grid and its statistics follow the isotropic areal power
 spectral density C(q) (m^4, m0 = integral of C over the q-plane), with no sampling noise
 in the amplitudes. Profile moments of such a surface (physics.md section 18):
 m0 = 2 pi int C q dq, m2 = pi int C q^3 dq, m4 = (3 pi / 4) int C q^5 dq.
@@ -30,8 +30,9 @@ def isotropic_surface(spectrum, n: int, length: float, seed: int, rms: float | N
     dq = 2.0 * np.pi / length
     c = np.asarray(spectrum(np.hypot(qx, qy)), dtype=float)
     c[0, 0] = 0.0  # no mean height
-    modes = np.sqrt(c * dq**2) * np.exp(2j * np.pi * rng.random((n, n)))
-    z = np.sqrt(2.0) * n * n * np.real(np.fft.ifft2(modes))
+    phase = 2.0 * np.pi * rng.random((n, n))
+    phase = phase - np.roll(phase[::-1, ::-1], 1, axis=(0, 1))  # phase(-q) = -phase(q): real heights
+    z = n * n * np.real(np.fft.ifft2(np.sqrt(c * dq**2) * np.exp(1j * phase)))
     if rms is not None:
         z *= rms / np.sqrt(np.mean(z**2))
     return z
