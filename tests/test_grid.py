@@ -191,16 +191,23 @@ def test_solver_sources_follow_imports_of_a_known_package(tmp_path):
         "a.py": "import numpy\n",
         "b.py": "from . import __version__\n",
         "c.py": "from .e import q\n",
-        "d.py": "",
+        "d.py": "from .sub.one import u\n",
         "e.py": "",
         "mesh.py": "",
         "extra.py": "",  # only reached through __init__'s lazy re-export
         "plotting.py": "from .solver import g\n",  # imports the solver, is not imported by it
+        "sub/__init__.py": "",
+        "sub/one.py": "from .two import v\nfrom ..f import w\n",  # .two: a sibling; ..f: the package's f
+        "sub/two.py": "",
+        "f.py": "",
+        "two.py": "",  # same name as sub/two.py, not imported
     }
+    (pkg / "sub").mkdir()
     for name, text in files.items():
         (pkg / name).write_text(text)
-    found = {p.name for p in grid.solver_sources(pkg)}
-    assert found == {"__init__.py", "solver.py", "scene.py", "a.py", "b.py", "c.py", "d.py", "e.py", "mesh.py"}
+    found = {str(p.relative_to(pkg)) for p in grid.solver_sources(pkg)}
+    assert found == {"__init__.py", "solver.py", "scene.py", "a.py", "b.py", "c.py", "d.py", "e.py", "mesh.py",
+                     "f.py", "sub/__init__.py", "sub/one.py", "sub/two.py"}
 
 
 def test_solver_sources_of_this_package_exclude_drawing_and_driving_code():

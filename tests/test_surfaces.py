@@ -177,7 +177,7 @@ def test_nan_in_raw_matrix_refused(tmp_path):
 @pytest.mark.parametrize(
     "setup, args, reason",
     [
-        (None, ["missing.asc"], "no such file"),
+        (None, ["missing.asc"], "cannot read (No such file"),
         ("junk", ["junk.xyz"], "cannot read"),
         ("one_point", ["one.npy", "--size", "1", "--unit", "um"], "at least"),
         ("flat", ["flat.npy", "--size", "16", "16", "--unit", "um"], "sigma = 0"),
@@ -216,3 +216,84 @@ def test_cli_writes_a_scene_section(tmp_path, capsys):
     direct = parameters(spectral_moments(from_array(z, (64e-6, 64e-6))))
     assert scene.roughness.sigma == pytest.approx(direct.sigma, rel=1e-9)
     assert scene.roughness.asperity_radius == pytest.approx(direct.asperity_radius, rel=1e-9)
+
+
+# --- a scene's roughness.surface ----------------------------------------------------------------
+
+
+def write_asc(path, z, side_um=64):
+    with path.open("w") as out:
+        out.write(f"# Width: {side_um} \u00b5m\n# Height: {side_um} \u00b5m\n# Value units: m\n")
+        np.savetxt(out, z, fmt="%.8e")
+
+
+@pytest.fixture
+def scene_dir(tmp_path):
+    """scenes/s.yaml naming ../maps/a.asc (relative to the scene file), and maps/b.asc."""
+    (tmp_path / "scenes").mkdir()
+    (tmp_path / "maps").mkdir()
+    for name, seed in (("a", 21), ("b", 22)):
+        z = isotropic_surface(lambda q: rolled_power_law(q, 2e5, 1.5e6, 0.7), 64, 64e-6, seed=seed, rms=0.5e-6)
+        write_asc(tmp_path / "maps" / f"{name}.asc", z)
+    (tmp_path / "scenes" / "s.yaml").write_text("roughness:\n  surface: ../maps/a.asc\nmesh: {nx: 15, ny: 1}\n")
+    return tmp_path
+
+
+def test_scene_takes_roughness_from_the_file(scene_dir, monkeypatch):
+    from lubecontact.scene import load_scene
+
+    monkeypatch.chdir(scene_dir / "maps")  # the path is relative to the scene file, not to here
+    scene = load_scene(scene_dir / "scenes" / "s.yaml")
+    direct = parameters(spectral_moments(read_surface(scene_dir / "maps" / "a.asc")))
+    assert scene.roughness.sigma == direct.sigma
+    assert scene.roughness.asperity_density == direct.asperity_density
+    assert scene.roughness.asperity_radius == direct.asperity_radius
+    # rebuilt from the Scene (as grids do): same surface, same case
+    assert scene.replace({}).hash == scene.hash
+    moved = scene.replace({"operating.speed": 1.0})
+    assert moved.roughness.sigma == direct.sigma and moved.hash != scene.hash
+    # another surface through an override, relative to the scene file too
+    other = scene.replace({"roughness.surface": "../maps/b.asc"})
+    assert other.roughness.sigma != direct.sigma and other.hash != scene.hash
+
+
+def test_case_hash_sees_the_content_not_the_name(scene_dir):
+    from lubecontact.scene import load_scene
+
+    path = scene_dir / "scenes" / "s.yaml"
+    first = load_scene(path)
+    (scene_dir / "maps" / "copy.asc").write_bytes((scene_dir / "maps" / "a.asc").read_bytes())
+    renamed = load_scene(path, {"roughness.surface": "../maps/copy.asc"})
+    assert renamed.hash == first.hash and "copy" not in renamed.canonical_yaml()
+    text = (scene_dir / "maps" / "a.asc").read_text().splitlines()
+    text[3] = text[3].replace("e", "1e", 1)  # one height edited
+    (scene_dir / "maps" / "a.asc").write_text("\n".join(text) + "\n")
+    assert load_scene(path).hash != first.hash
+    # a cut-off is part of the case too
+    assert load_scene(path, {"roughness.surface_cutoff": 8e-6}).hash != load_scene(path).hash
+
+
+def test_scene_without_surface_keeps_its_canonical_form():
+    from lubecontact.scene import load_scene
+
+    text = load_scene({}).canonical_yaml()
+    assert "surface" not in text
+
+
+@pytest.mark.parametrize(
+    "overrides, reason",
+    [
+        ({"roughness.sigma": 1e-6}, "roughness.sigma = 1e-06: set by roughness.surface"),
+        ({"roughness.surface": "../maps/none.asc"}, "roughness.surface = '../maps/none.asc': "),
+        ({"roughness.surface": "../maps/raw.npy"}, "needs its size"),
+        ({"roughness.surface_cutoff": 1e-6}, "shorter than the Nyquist"),
+    ],
+    ids=["sigma_too", "missing_file", "raw_matrix", "cutoff_below_nyquist"],
+)
+def test_scene_surface_refusals(scene_dir, overrides, reason):
+    from lubecontact.scene import SceneError, load_scene
+
+    np.save(scene_dir / "maps" / "raw.npy", np.zeros((16, 16)))
+    with pytest.raises(SceneError) as err:
+        load_scene(scene_dir / "scenes" / "s.yaml", overrides)
+    assert reason in str(err.value)

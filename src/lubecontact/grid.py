@@ -346,12 +346,13 @@ def plan_chunks(grids: Iterable[FigureGrid], cases_per_job: int | None = None) -
 SOLVER_ROOTS = ("solver", "scene")
 
 
-def _imported_modules(tree: ast.AST) -> Iterator[str]:
-    """Names of the package's own modules a module imports (relative or lubecontact.*)."""
+def _imported_modules(tree: ast.AST, depth: int = 1) -> Iterator[str]:
+    """Names of the package's own modules a module imports (relative or lubecontact.*);
+    ``depth`` 2 for a module of a subpackage (whose ``from .x`` are its siblings)."""
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom):
             module = node.module or ""
-            if node.level == 0 and not module.startswith("lubecontact"):
+            if (node.level == 0 and not module.startswith("lubecontact")) or 0 < node.level < depth:
                 continue
             inner = module.removeprefix("lubecontact").lstrip(".") if node.level == 0 else module
             if inner:
@@ -368,17 +369,23 @@ def solver_sources(package_dir, roots: Sequence[str] = SOLVER_ROOTS) -> list[Pat
     """The package's source files that ``roots`` import (at the top or inside functions),
     directly or through each other, and ``__init__.py``: the files whose edits can change a
     case's result. ``__init__``'s own lazy re-exports (the public surface) are not followed,
-    so the plotting, grid, sweep and CLI modules count only if the solver imports them."""
+    so the plotting, grid, sweep and CLI modules count only if the solver imports them.
+    A subpackage they import counts whole (all its modules)."""
     package_dir = Path(package_dir)
-    todo, found = list(roots), {"__init__"}
+    todo, found = list(roots), {"__init__": [package_dir / "__init__.py"]}
     while todo:
         name = todo.pop()
-        path = package_dir / f"{name}.py"
-        if name in found or not path.is_file():
+        path, sub = package_dir / f"{name}.py", package_dir / name
+        if name in found:
             continue
-        found.add(name)
-        todo.extend(_imported_modules(ast.parse(path.read_text(), filename=str(path))))
-    return sorted(package_dir / f"{name}.py" for name in found)
+        if path.is_file():
+            found[name] = [path]
+            todo.extend(_imported_modules(ast.parse(path.read_text(), filename=str(path))))
+        elif (sub / "__init__.py").is_file():
+            found[name] = sorted(sub.glob("*.py"))
+            for member in found[name]:
+                todo.extend(_imported_modules(ast.parse(member.read_text(), filename=str(member)), depth=2))
+    return sorted(p for paths in found.values() for p in paths)
 
 
 def sources_fingerprint(paths: Iterable) -> str:

@@ -55,21 +55,24 @@ class Surface:
 
 
 def file_digest(path) -> str:
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    """sha256 of the file's bytes (a scene's case hash sees the content, not the name)."""
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError as err:
+        raise SurfaceError(f"{path}: cannot read ({err.strerror or err})") from err
 
 
 def read_surface(path, size=None, unit: str | None = None, periodic: bool = False) -> Surface:
     """The surface in ``path``: an instrument file (``size`` None) or a raw matrix."""
     path = Path(path)
-    if not path.is_file():
-        raise SurfaceError(f"{path}: no such file")
+    digest = file_digest(path)
     if size is None:
         if path.suffix.lower() == ".npy":
             raise SurfaceError(f"{path}: a raw height matrix needs its size (--size LX [LY]) and unit (--unit)")
         heights, dx, dy, periodic = _instrument(path, unit)
     else:
         heights, dx, dy = _raw(path, size, unit)
-    return _checked(heights, dx, dy, periodic, str(path), file_digest(path))
+    return _checked(heights, dx, dy, periodic, str(path), digest)
 
 
 def from_array(heights, size, unit: str = "m", periodic: bool = False, source: str = "array") -> Surface:
