@@ -302,9 +302,11 @@ def test_scene_surface_refusals(scene_dir, overrides, reason):
 def test_surface_override_on_a_scene_without_one(scene_dir):
     """A grid sweeps roughness.surface over a Table 1-like scene: the override replaces
     sigma, eta, R_peak and its path starts at the scene file's directory."""
-    from lubecontact.scene import load_scene
+    from lubecontact.scene import SceneError, load_scene
 
     (scene_dir / "scenes" / "plain.yaml").write_text("roughness: {sigma: 1.0e-6, asperity_radius: 2.0e-4}\n")
     base = load_scene(scene_dir / "scenes" / "plain.yaml")
     swept = base.replace({"roughness.surface": "../maps/a.asc"})
     assert swept.roughness.sigma == load_scene(scene_dir / "scenes" / "s.yaml").roughness.sigma
+    with pytest.raises(SceneError, match="roughness.surface_cutoff = 1e-05: no roughness.surface"):
+        base.replace({"roughness.surface_cutoff": 1e-5})

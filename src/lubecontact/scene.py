@@ -507,6 +507,12 @@ def _surface_replaces(raw, overrides: Mapping):
 def _measured(roughness, raw, directory: str, problems: list[str]):
     """The roughness section with sigma, eta and R_peak from ``roughness.surface``
     (McCool's method, lubecontact.surfaces); unchanged without a surface."""
+    if roughness is not None and roughness.surface is None and roughness.surface_cutoff is not None:
+        problems.append(
+            f"roughness.surface_cutoff = {roughness.surface_cutoff!r}: no roughness.surface to apply it to; "
+            f"allowed: 'auto' without a surface"
+        )
+        return None
     if roughness is None or roughness.surface is None:  # the directory serves later overrides
         return roughness if roughness is None else replace(roughness, directory=directory)
     given = [k for k in SURFACE_SETS if k in (raw or {})]
