@@ -310,3 +310,20 @@ def test_surface_override_on_a_scene_without_one(scene_dir):
     assert swept.roughness.sigma == load_scene(scene_dir / "scenes" / "s.yaml").roughness.sigma
     with pytest.raises(SceneError, match="roughness.surface_cutoff = 1e-05: no roughness.surface"):
         base.replace({"roughness.surface_cutoff": 1e-5})
+
+
+def test_cli_profile_and_composite(tmp_path, capsys):
+    """A 1-D profile in nm over 2 mm (the sine's moments are known) and a composite of two."""
+    amplitude_nm, periods, n, length_um = 300.0, 8, 512, 2000.0
+    x = np.arange(n) / n
+    np.save(tmp_path / "p.npy", amplitude_nm * np.cos(2 * math.pi * periods * x))
+    args = ["roughness", str(tmp_path / "p.npy"), "--size", str(length_um), "--unit", "nm", "--periodic"]
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    k = 2 * math.pi * periods / (length_um * 1e-9)  # --size is in --unit too: 2000 nm
+    assert f"m0             = {(amplitude_nm * 1e-9) ** 2 / 2:.6g} m^2" in out
+    assert f"{(amplitude_nm * 1e-9) ** 2 * k**2 / 2:.6g} (x)" in out and "n/a (profile)" in out
+    assert main(args[:2] + args[1:2] + args[2:]) == 0  # the same profile twice
+    out = capsys.readouterr().out
+    assert "composite" in out and "V_r1 0.5, V_r2 0.5" in out
+    assert main(["roughness", "a", "b", "c"]) == 2

@@ -346,23 +346,29 @@ def plan_chunks(grids: Iterable[FigureGrid], cases_per_job: int | None = None) -
 SOLVER_ROOTS = ("solver", "scene")
 
 
-def _imported_modules(tree: ast.AST, depth: int = 1) -> Iterator[str]:
-    """Names of the package's own modules a module imports (relative or lubecontact.*);
-    ``depth`` 2 for a module of a subpackage (whose ``from .x`` are its siblings)."""
+def _imported_modules(tree: ast.AST, prefix: tuple[str, ...] = ()) -> Iterator[str]:
+    """Dotted names (below the package) of the package's own modules a module imports,
+    relative or lubecontact.*; ``prefix``: the importing module's subpackage ("surfaces",)
+    or () at the top. ``from .a import b`` yields "a" and "a.b" (b may be a module)."""
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom):
             module = node.module or ""
-            if (node.level == 0 and not module.startswith("lubecontact")) or 0 < node.level < depth:
+            if node.level == 0:
+                if not module.startswith("lubecontact"):
+                    continue
+                base = module.split(".")[1:]
+            elif node.level - 1 > len(prefix):
                 continue
-            inner = module.removeprefix("lubecontact").lstrip(".") if node.level == 0 else module
-            if inner:
-                yield inner.split(".")[0]
-            else:  # from . import x: x is a module or a name of __init__
-                yield from (alias.name for alias in node.names)
+            else:
+                base = list(prefix[: len(prefix) - (node.level - 1)]) + (module.split(".") if module else [])
+            if base:
+                yield ".".join(base)
+            # from . import x: x is a module or a name of __init__
+            yield from (".".join(base + [alias.name]) for alias in node.names)
         elif isinstance(node, ast.Import):
             for alias in node.names:
                 if alias.name.startswith("lubecontact."):
-                    yield alias.name.split(".")[1]
+                    yield alias.name.split(".", 1)[1]
 
 
 def solver_sources(package_dir, roots: Sequence[str] = SOLVER_ROOTS) -> list[Path]:
@@ -370,22 +376,20 @@ def solver_sources(package_dir, roots: Sequence[str] = SOLVER_ROOTS) -> list[Pat
     directly or through each other, and ``__init__.py``: the files whose edits can change a
     case's result. ``__init__``'s own lazy re-exports (the public surface) are not followed,
     so the plotting, grid, sweep and CLI modules count only if the solver imports them.
-    A subpackage they import counts whole (all its modules)."""
+    A module of a subpackage brings the subpackage's ``__init__.py`` (run on import)."""
     package_dir = Path(package_dir)
-    todo, found = list(roots), {"__init__": [package_dir / "__init__.py"]}
+    todo, found = list(roots), {"__init__": package_dir / "__init__.py"}
     while todo:
         name = todo.pop()
-        path, sub = package_dir / f"{name}.py", package_dir / name
-        if name in found:
+        parts = name.split(".")
+        module, package = package_dir.joinpath(*parts).with_suffix(".py"), package_dir.joinpath(*parts, "__init__.py")
+        if name in found or not (module.is_file() or package.is_file()):
             continue
-        if path.is_file():
-            found[name] = [path]
-            todo.extend(_imported_modules(ast.parse(path.read_text(), filename=str(path))))
-        elif (sub / "__init__.py").is_file():
-            found[name] = sorted(sub.glob("*.py"))
-            for member in found[name]:
-                todo.extend(_imported_modules(ast.parse(member.read_text(), filename=str(member)), depth=2))
-    return sorted(p for paths in found.values() for p in paths)
+        found[name] = module if module.is_file() else package
+        prefix = tuple(parts[:-1]) if module.is_file() else tuple(parts)
+        todo.extend(".".join(parts[:k]) for k in range(1, len(parts)))  # parent packages run first
+        todo.extend(_imported_modules(ast.parse(found[name].read_text(), filename=str(found[name])), prefix))
+    return sorted(found.values())
 
 
 def sources_fingerprint(paths: Iterable) -> str:
