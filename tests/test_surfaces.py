@@ -148,6 +148,17 @@ def test_instrument_header_gives_size_and_unit(tmp_path):
     assert np.allclose(s.heights, z[:32], rtol=1e-12, atol=1e-20)
 
 
+def test_binary_instrument_format(tmp_path):
+    """SurfaceTopography's NetCDF container (x along the first axis there), size in um."""
+    from SurfaceTopography import Topography
+
+    z = np.random.default_rng(1).normal(size=(32, 16))  # [x, y], heights in um
+    Topography(z, (64.0, 32.0), unit="\u00b5m").to_netcdf(str(tmp_path / "t.nc"))
+    s = read_surface(tmp_path / "t.nc")
+    assert s.heights.shape == (16, 32) and s.dx == pytest.approx(2e-6) and s.dy == pytest.approx(2e-6)
+    assert np.allclose(s.heights, z.T * 1e-6, rtol=1e-12, atol=0)
+
+
 @pytest.mark.parametrize(
     "content, reason",
     [

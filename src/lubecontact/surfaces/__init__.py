@@ -11,6 +11,7 @@ picture holds:
 - ``mccool``: sigma, eta, R_peak, alpha, sigma_s from the moments; the composite of two
   surfaces and the sigma split of the shear flow factor.
 - ``synthetic``: seeded isotropic random surfaces with a known spectrum (tests, samples).
+- ``figure``: the profile spectra with the moments' cut-off marked (workflow surfaces_psd).
 - ``report``: what ``lubecontact roughness`` prints and writes; ``measured``: a scene's
   ``roughness.surface`` (parameters cached on the file's content).
 """
