@@ -338,3 +338,21 @@ def test_cli_profile_and_composite(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "composite" in out and "V_r1 0.5, V_r2 0.5" in out
     assert main(["roughness", "a", "b", "c"]) == 2
+
+
+def test_fig04_alpha_holds_mccool_bandwidth_and_fig04_does_not():
+    """The captions' claims from the grids themselves: alpha = (eta R sigma / 0.02036)^2."""
+    from pathlib import Path
+
+    from lubecontact import grid
+
+    root = Path(__file__).resolve().parents[1]
+
+    def alphas(figure):
+        g = grid.expand(figure, grid.figure_spec(figure, root / "config" / "figures"), root)
+        scenes = [g.base.replace(c.set) for c in g.cases[:, 0]]
+        return [(s.roughness.asperity_density * s.roughness.asperity_radius * s.roughness.sigma / 0.020358) ** 2 for s in scenes]
+
+    assert alphas("fig04_alpha") == pytest.approx([6.03] * 4, rel=1e-3)
+    paper = alphas("fig04")
+    assert paper[0] == pytest.approx(1.51, rel=1e-2) and paper[-1] == pytest.approx(96.5, rel=1e-2)
