@@ -338,6 +338,8 @@ def test_cli_profile_and_composite(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "composite" in out and "V_r1 0.5, V_r2 0.5" in out
     assert main(["roughness", "a", "b", "c"]) == 2
+    assert main(args + ["--out", str(tmp_path / "no" / "such" / "dir.yaml")]) == 2
+    assert "cannot write" in capsys.readouterr().err
 
 
 def test_fig04_alpha_holds_mccool_bandwidth_and_fig04_does_not():

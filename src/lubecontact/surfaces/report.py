@@ -90,6 +90,10 @@ def run(args) -> int:
         return 2
     print("\n".join(line for block in blocks for line in block))
     if args.out:
-        write_text(args.out, section_yaml(result, list(args.surfaces), split))
+        try:
+            write_text(args.out, section_yaml(result, list(args.surfaces), split))
+        except OSError as err:
+            print(f"lubecontact: cannot write {args.out}: {err.strerror or err}", file=sys.stderr)
+            return 2
         print(f"wrote {args.out}")
     return 0
