@@ -20,6 +20,7 @@ include: "workflow/rules/solve.smk"
 include: "workflow/rules/collect.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/accuracy.smk"
+include: "workflow/rules/surfaces.smk"
 
 
 localrules:
@@ -28,6 +29,7 @@ localrules:
     plot,
     accuracy_table,
     accuracy_figure,
+    surfaces_psd,
 
 
 rule all:
@@ -35,4 +37,5 @@ rule all:
         expand("results/figures/{figure}.{ext}", figure=FIGURES, ext=["png", "pdf"]),
         expand("results/figures/accuracy_cost.{ext}", ext=["png", "pdf"]),
         "results/data/accuracy_cost.md",
+        expand("results/figures/surfaces_psd.{ext}", ext=["png", "pdf"]) if SURFACE_FILES else [],
     default_target: True

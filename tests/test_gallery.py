@@ -31,7 +31,8 @@ def solved():
 
 
 def test_the_gallery_has_the_promised_scenes():
-    assert {"dry_static", "smooth_full_film", "gold_connector_pao", "gold_connector_pfpe", "auto_effects"} <= set(GALLERY)
+    assert {"dry_static", "smooth_full_film", "gold_connector_pao", "gold_connector_pfpe", "auto_effects",
+            "measured_ground"} <= set(GALLERY)
 
 
 @pytest.mark.parametrize("name", GALLERY)

@@ -191,16 +191,24 @@ def test_solver_sources_follow_imports_of_a_known_package(tmp_path):
         "a.py": "import numpy\n",
         "b.py": "from . import __version__\n",
         "c.py": "from .e import q\n",
-        "d.py": "",
+        "d.py": "from .sub.one import u\n",
         "e.py": "",
         "mesh.py": "",
         "extra.py": "",  # only reached through __init__'s lazy re-export
         "plotting.py": "from .solver import g\n",  # imports the solver, is not imported by it
+        "sub/__init__.py": "",
+        "sub/one.py": "from .two import v\nfrom ..f import w\n",  # .two: a sibling; ..f: the package's f
+        "sub/two.py": "",
+        "sub/drawing.py": "from .two import v\n",  # in the subpackage, imported by none of them
+        "f.py": "",
+        "two.py": "",  # same name as sub/two.py, not imported
     }
+    (pkg / "sub").mkdir()
     for name, text in files.items():
         (pkg / name).write_text(text)
-    found = {p.name for p in grid.solver_sources(pkg)}
-    assert found == {"__init__.py", "solver.py", "scene.py", "a.py", "b.py", "c.py", "d.py", "e.py", "mesh.py"}
+    found = {str(p.relative_to(pkg)) for p in grid.solver_sources(pkg)}
+    assert found == {"__init__.py", "solver.py", "scene.py", "a.py", "b.py", "c.py", "d.py", "e.py", "mesh.py",
+                     "f.py", "sub/__init__.py", "sub/one.py", "sub/two.py"}
 
 
 def test_solver_sources_of_this_package_exclude_drawing_and_driving_code():
@@ -208,6 +216,9 @@ def test_solver_sources_of_this_package_exclude_drawing_and_driving_code():
     assert {"__init__.py", "solver.py", "scene.py", "reynolds.py", "deformation.py", "output.py"} <= found
     assert not {"plotting.py", "grid.py", "cli.py"} & found
     assert not [name for name in found if "sweep" in name]
+    surfaces = {p.name for p in grid.solver_sources(ROOT / "src" / "lubecontact") if p.parent.name == "surfaces"}
+    assert {"__init__.py", "measured.py", "moments.py", "mccool.py", "reading.py"} <= surfaces  # roughness.surface
+    assert not {"figure.py", "report.py", "synthetic.py"} & surfaces  # drawing, CLI and test helpers
 
 
 def test_fingerprint_depends_on_content_not_location(tmp_path):

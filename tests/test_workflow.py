@@ -30,10 +30,11 @@ ROOT = Path(__file__).resolve().parents[1]
 TREE = ("Snakefile", "config", "workflow", "src")
 TINY = ("--configfile", "config/test.yaml")
 PROFILE = ("--workflow-profile", "workflow/profiles/default")
-FIGURES = [f"fig{n:02d}" for n in range(3, 12)]
+FIGURES = [f"fig{n:02d}" for n in range(3, 12)] + ["fig04_alpha", "fig04_measured"]
 # swept dimension of each figure's data in the tiny config (test.yaml: 2 values, 4 speeds)
 SWEPT = {"fig03": "mesh", "fig04": "sigma", "fig05": "sigma", "fig06": "radius", "fig07": "radius",
-         "fig08": "force", "fig09": "force", "fig10": "viscosity", "fig11": "viscosity"}
+         "fig08": "force", "fig09": "force", "fig10": "viscosity", "fig11": "viscosity",
+         "fig04_alpha": "roughness", "fig04_measured": "surface"}
 
 
 def copy_tree(dest: Path) -> Path:
@@ -80,6 +81,8 @@ def edited(path: Path, old: str, new: str):
 
 # the accuracy_cost study (workflow/rules/accuracy.smk): one timed solve job, table, figure
 ACCURACY = {"accuracy_solve": 1, "accuracy_table": 1, "accuracy_figure": 1}
+# the measured surfaces' spectra (workflow/rules/surfaces.smk)
+SURFACES = {"surfaces_psd": 1}
 
 
 # --- plans and lint (no solving) ---------------------------------------------------------------
@@ -92,21 +95,23 @@ def fresh(tmp_path_factory):
 
 @pytest.mark.slow
 def test_tiny_config_plans_every_figure(fresh):
-    # test.yaml: 5 grids of 2 curves on the same coarse mesh, each with the base value, so
-    # the baseline curve is shared: 1 + 5 curves = 6 jobs of 4 speeds; 9 figures.
-    assert planned(fresh, *TINY) == Counter(solve=6, collect=9, plot=9, all=1, **ACCURACY)
+    # test.yaml: 6 grids of 2 curves on the same coarse mesh, 5 with the base value, so the
+    # baseline curve is shared: 1 + 5 + 1 curves; fig04_measured: 2 surfaces, 9 jobs of 4
+    # speeds; 11 figures.
+    assert planned(fresh, *TINY) == Counter(solve=9, collect=11, plot=11, all=1, **ACCURACY, **SURFACES)
 
 
 @pytest.mark.slow
 def test_default_grids(fresh):
     # fig03: 7 meshes up to 201^2 (51^2 is the baseline); fig04: 4 sigma, fig06: 4 radii,
     # fig10: 4 viscosities, each with the baseline; fig08: 5 forces with the baseline;
-    # fig05/07/09/11 reuse those grids: 7 + 3 + 3 + 4 + 3 = 20 curves of 26 speeds.
-    assert planned(fresh) == Counter(solve=20, collect=9, plot=9, all=1, **ACCURACY)
+    # fig05/07/09/11 reuse those grids: 7 + 3 + 3 + 4 + 3 = 20 curves; fig04_alpha: 4 (sigma,
+    # R_peak) pairs with the baseline, fig04_measured: 2 surfaces: 25 curves of 26 speeds.
+    assert planned(fresh) == Counter(solve=25, collect=11, plot=11, all=1, **ACCURACY, **SURFACES)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
     cases = {c for g in grid.expand_all(specs, ROOT).values() for c in g.unique_cases()}
-    assert len(cases) == 20 * 26
+    assert len(cases) == 25 * 26
 
 
 @pytest.mark.slow
@@ -174,7 +179,7 @@ def test_physical_trends(built):
 
 @pytest.mark.slow
 def test_figures_are_images(built):
-    for figure in FIGURES:
+    for figure in FIGURES + ["surfaces_psd"]:
         png = built / "results" / "figures" / f"{figure}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         height, width, _ = imread(png).shape
@@ -192,7 +197,7 @@ def test_plot_style_change_only_redraws(built):
     with edited(built / "config" / "figures" / "fig06.yaml", 'title: "cylinder radius R"', 'title: "radius"'):
         assert planned(built, *TINY) == Counter(plot=1, all=1)
     with edited(built / "src" / "lubecontact" / "plotting.py", '"\\u2013",\n', '"-",\n'):
-        assert planned(built, *TINY) == Counter(plot=9, all=1)
+        assert planned(built, *TINY) == Counter(plot=11, all=1)
 
 
 @pytest.mark.slow
@@ -205,8 +210,34 @@ def test_one_grid_value_solves_one_curve(built):
 def test_solver_change_resolves_every_case_and_content_decides(built):
     solver = built / "src" / "lubecontact" / "solver.py"
     with edited(solver, '"""', '"""Edited. '):
-        assert planned(built, *TINY) == Counter(solve=6, collect=9, plot=9, all=1, **ACCURACY)
+        assert planned(built, *TINY) == Counter(solve=9, collect=11, plot=11, all=1, **ACCURACY)
     # restored: newer time stamp, same content -> nothing to do
+    assert planned(built, *TINY) == Counter()
+
+
+@pytest.mark.slow
+def test_measured_surfaces_and_fixed_alpha(built):
+    """fig04_measured: the rougher, sharper sample (honed, sigma ~1 um, R_peak ~26 um) keeps
+    lower resistance at speed; fig04_alpha: sigma R_peak held, the curves are other cases
+    than fig04's except the shared baseline."""
+    measured = xr.load_dataset(built / "results" / "data" / "fig04_measured.nc")
+    fastest = measured["contact_resistance"].isel(speed=-1)
+    assert measured["surface"].values.tolist() == ["../surfaces/ground.asc", "../surfaces/honed.asc"]
+    assert fastest.sel(surface="../surfaces/honed.asc") < fastest.sel(surface="../surfaces/ground.asc")
+    alpha = xr.load_dataset(built / "results" / "data" / "fig04_alpha.nc")
+    assert (alpha["sigma"] * alpha["asperity_radius"]).values == pytest.approx([5e-11, 5e-11])
+    fig04 = xr.load_dataset(built / "results" / "data" / "fig04.nc")
+    assert (alpha["case_id"].isel(roughness=0).values == fig04["case_id"].sel(sigma=0.5e-6).values).all()
+    assert not set(alpha["case_id"].isel(roughness=1).values) & set(fig04["case_id"].values.ravel())
+
+
+@pytest.mark.slow
+def test_surface_file_content_decides_its_cases(built):
+    """Editing one height of ground.asc reruns its curve (and the spectra), nothing else."""
+    path = built / "config" / "surfaces" / "ground.asc"
+    first = path.read_text().splitlines()[4].split()[0]  # the first height, after the header
+    with edited(path, f"\n{first} ", f"\n{float(first) * 1.5:.5e} "):
+        assert planned(built, *TINY) == Counter(solve=1, collect=1, plot=1, all=1, **SURFACES)
     assert planned(built, *TINY) == Counter()
 
 

@@ -1,4 +1,4 @@
-"""Command line: ``lubecontact solve|sweep|show``. Exit codes: 0 converged, 2 bad input,
+"""Command line: ``lubecontact solve|sweep|show|roughness``. Exit codes: 0 converged, 2 bad input,
 3 not converged (the file is still written, with converged = 0)."""
 
 from __future__ import annotations
@@ -31,6 +31,17 @@ def _parser() -> argparse.ArgumentParser:
 
     show = sub.add_parser("show", help="validate a scene and print its canonical form and hash")
     scene_args(show)
+
+    rough = sub.add_parser("roughness", help="McCool roughness parameters (sigma, eta, R_peak, alpha) of measured surfaces")
+    rough.add_argument("surfaces", nargs="+", metavar="SURFACE",
+                       help="instrument file (SurfaceTopography formats) or raw matrix (.txt/.npy with --size, --unit); "
+                            "two files: also their composite")
+    rough.add_argument("--size", nargs="+", type=float, metavar="L", help="raw matrix: LX [LY] in --unit")
+    rough.add_argument("--unit", choices=["m", "mm", "um", "nm"], help="raw matrix: unit of --size and of the heights")
+    rough.add_argument("--cutoff", type=float, metavar="LAMBDA_C",
+                       help="short-wavelength cut-off of m2, m4 in m (default: 4 sampling intervals)")
+    rough.add_argument("--periodic", action="store_true", help="raw matrix: the map wraps around (no window)")
+    rough.add_argument("--out", help="write a roughness: section (YAML) a scene can include")
     return p
 
 
@@ -68,6 +79,10 @@ def _summary(ds) -> str:
 
 def main(argv=None) -> int:
     args = _parser().parse_args(argv)
+    if args.command == "roughness":
+        from .surfaces.report import run
+
+        return run(args)
     from .scene import SceneError
 
     try:

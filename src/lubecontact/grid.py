@@ -346,39 +346,50 @@ def plan_chunks(grids: Iterable[FigureGrid], cases_per_job: int | None = None) -
 SOLVER_ROOTS = ("solver", "scene")
 
 
-def _imported_modules(tree: ast.AST) -> Iterator[str]:
-    """Names of the package's own modules a module imports (relative or lubecontact.*)."""
+def _imported_modules(tree: ast.AST, prefix: tuple[str, ...] = ()) -> Iterator[str]:
+    """Dotted names (below the package) of the package's own modules a module imports,
+    relative or lubecontact.*; ``prefix``: the importing module's subpackage ("surfaces",)
+    or () at the top. ``from .a import b`` yields "a" and "a.b" (b may be a module)."""
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom):
             module = node.module or ""
-            if node.level == 0 and not module.startswith("lubecontact"):
+            if node.level == 0:
+                if not module.startswith("lubecontact"):
+                    continue
+                base = module.split(".")[1:]
+            elif node.level - 1 > len(prefix):
                 continue
-            inner = module.removeprefix("lubecontact").lstrip(".") if node.level == 0 else module
-            if inner:
-                yield inner.split(".")[0]
-            else:  # from . import x: x is a module or a name of __init__
-                yield from (alias.name for alias in node.names)
+            else:
+                base = list(prefix[: len(prefix) - (node.level - 1)]) + (module.split(".") if module else [])
+            if base:
+                yield ".".join(base)
+            # from . import x: x is a module or a name of __init__
+            yield from (".".join(base + [alias.name]) for alias in node.names)
         elif isinstance(node, ast.Import):
             for alias in node.names:
                 if alias.name.startswith("lubecontact."):
-                    yield alias.name.split(".")[1]
+                    yield alias.name.split(".", 1)[1]
 
 
 def solver_sources(package_dir, roots: Sequence[str] = SOLVER_ROOTS) -> list[Path]:
     """The package's source files that ``roots`` import (at the top or inside functions),
     directly or through each other, and ``__init__.py``: the files whose edits can change a
     case's result. ``__init__``'s own lazy re-exports (the public surface) are not followed,
-    so the plotting, grid, sweep and CLI modules count only if the solver imports them."""
+    so the plotting, grid, sweep and CLI modules count only if the solver imports them.
+    A module of a subpackage brings the subpackage's ``__init__.py`` (run on import)."""
     package_dir = Path(package_dir)
-    todo, found = list(roots), {"__init__"}
+    todo, found = list(roots), {"__init__": package_dir / "__init__.py"}
     while todo:
         name = todo.pop()
-        path = package_dir / f"{name}.py"
-        if name in found or not path.is_file():
+        parts = name.split(".")
+        module, package = package_dir.joinpath(*parts).with_suffix(".py"), package_dir.joinpath(*parts, "__init__.py")
+        if name in found or not (module.is_file() or package.is_file()):
             continue
-        found.add(name)
-        todo.extend(_imported_modules(ast.parse(path.read_text(), filename=str(path))))
-    return sorted(package_dir / f"{name}.py" for name in found)
+        found[name] = module if module.is_file() else package
+        prefix = tuple(parts[:-1]) if module.is_file() else tuple(parts)
+        todo.extend(".".join(parts[:k]) for k in range(1, len(parts)))  # parent packages run first
+        todo.extend(_imported_modules(ast.parse(found[name].read_text(), filename=str(found[name])), prefix))
+    return sorted(found.values())
 
 
 def sources_fingerprint(paths: Iterable) -> str:

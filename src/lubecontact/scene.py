@@ -23,7 +23,7 @@ import numbers
 import os
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
 from pathlib import Path
 
@@ -35,6 +35,8 @@ AUTO = "auto"
 
 # McCool (1986): sigma_s^2 = sigma^2 - 3.717e-4/(eta R_peak)^2 (physics.md section 2).
 MCCOOL_VARIANCE_CONSTANT = 3.717e-4
+# Keys a measured surface (roughness.surface) sets; a scene with a surface must not set them.
+SURFACE_SETS = ("sigma", "asperity_density", "asperity_radius")
 
 
 class SceneError(ValueError):
@@ -209,6 +211,23 @@ class _AutoOr:
         return AUTO if value is None else value
 
 
+@dataclass(frozen=True)
+class _OptionalPath:
+    """A file path (text), or none."""
+
+    allowed = "a file path (text) or none"
+
+    def __call__(self, value):
+        if value is None or value == "none":
+            return None
+        if not isinstance(value, str) or not value.strip():
+            raise _Invalid("not a file path")
+        return value
+
+    def dump(self, value):
+        return value
+
+
 def _field(default, rule, doc: str):
     """A schema entry: default (Table 1), rule (type and range), doc (meaning, paper symbol)."""
     return field(default=default, metadata={"rule": rule, "doc": doc})
@@ -269,14 +288,36 @@ class Roughness(_Section):
         0.5, _Real("1", low=0.0, low_open=False, high=1.0, high_open=False),
         "share of sigma^2 on the sliding block (the rest on the cylinder): Patir-Cheng shear flow factor",
     )
+    surface: str | None = _field(
+        None, _OptionalPath(), "measured surface file, relative to the scene file; sets sigma, eta and R_peak"
+    )
+    surface_cutoff: float | None = _field(
+        None, _AutoOr(_positive("m")), "short-wavelength cut-off of the surface's m2, m4 (auto: 4 samples)"
+    )
+    surface_sha256: str | None = None  # content of the surface file: what the case hash sees
+    directory: str = field(default=".", compare=False)  # where a relative surface path starts
 
-    def to_dict(self):
-        """The equal split (the default, where the shear flow factor vanishes) is left out, so
-        that scenes written before the key existed keep their canonical form and hash."""
+    def _all_keys(self):
+        """Every key; the equal split (the default, where the shear flow factor vanishes) is
+        left out, so that scenes written before the key existed keep their canonical form
+        and hash."""
         data = super().to_dict()
         if self.split == 0.5:
             del data["split"]
         return data
+
+    def to_dict(self):
+        """Without a surface, as before; with one, its path and no sigma, eta, R_peak (they
+        come from the file when the dict is loaded again)."""
+        drop = SURFACE_SETS if self.surface is not None else ("surface", "surface_cutoff")
+        return {k: v for k, v in self._all_keys().items() if k not in drop}
+
+    def canonical_dict(self):
+        """The case's identity: the file's content (sha256), not its name, with the
+        parameters read from it."""
+        if self.surface is None:
+            return self.to_dict()
+        return {**self._all_keys(), "surface": f"sha256:{self.surface_sha256}"}
 
 
 @dataclass(frozen=True)
@@ -355,8 +396,9 @@ class Scene:
 
     def canonical_yaml(self) -> str:
         """Sorted keys, every default filled, floats written from repr(float): equal scenes
-        give equal text however they were spelt."""
-        return yaml.safe_dump(self.to_dict(), sort_keys=True, default_flow_style=False)
+        give equal text however they were spelt. A measured surface appears by content."""
+        data = {**self.to_dict(), "roughness": self.roughness.canonical_dict()}
+        return yaml.safe_dump(data, sort_keys=True, default_flow_style=False)
 
     @cached_property
     def hash(self) -> str:
@@ -479,6 +521,57 @@ def _build_section(name: str, raw, problems: list[str]):
     return cls(**values) if len(problems) == n_before else None
 
 
+def _directory(source) -> str:
+    """Where a relative ``roughness.surface`` starts: the scene file's directory, a Scene's
+    own, else the current directory."""
+    if isinstance(source, Scene):
+        return source.roughness.directory
+    if isinstance(source, (str, os.PathLike)):
+        return str(Path(source).resolve().parent)
+    return str(Path.cwd())
+
+
+def _surface_replaces(raw, overrides: Mapping):
+    """An override of roughness.surface replaces sigma, eta and R_peak of the scene it
+    overrides (they come from the file); overriding them as well is still refused."""
+    if "roughness.surface" not in overrides or not isinstance(raw, Mapping) or not isinstance(raw.get("roughness"), Mapping):
+        return raw
+    return {**raw, "roughness": {k: v for k, v in raw["roughness"].items() if k not in SURFACE_SETS}}
+
+
+def _measured(roughness, raw, directory: str, problems: list[str]):
+    """The roughness section with sigma, eta and R_peak from ``roughness.surface``
+    (McCool's method, lubecontact.surfaces); unchanged without a surface."""
+    if roughness is not None and roughness.surface is None and roughness.surface_cutoff is not None:
+        problems.append(
+            f"roughness.surface_cutoff = {roughness.surface_cutoff!r}: no roughness.surface to apply it to; "
+            f"allowed: 'auto' without a surface"
+        )
+        return None
+    if roughness is None or roughness.surface is None:  # the directory serves later overrides
+        return roughness if roughness is None else replace(roughness, directory=directory)
+    given = [k for k in SURFACE_SETS if k in (raw or {})]
+    if given:
+        problems.extend(
+            f"roughness.{k} = {raw[k]!r}: set by roughness.surface = {roughness.surface!r}; allowed: "
+            f"leave out {', '.join(SURFACE_SETS)} when a surface is given" for k in given
+        )
+        return None
+    from .surfaces.measured import scene_roughness
+    from .surfaces.reading import SurfaceError
+
+    try:
+        params, digest = scene_roughness(Path(directory) / roughness.surface, roughness.surface_cutoff)
+    except SurfaceError as err:
+        problems.append(
+            f"roughness.surface = {roughness.surface!r}: {err}; allowed: a surface file with its size and unit "
+            f"(an instrument format; check it with lubecontact roughness), relative to {directory}"
+        )
+        return None
+    values = dict(zip(SURFACE_SETS, (params.sigma, params.asperity_density, params.asperity_radius)))
+    return replace(roughness, **values, surface_sha256=digest, directory=directory)
+
+
 def _cross_problems(s: dict) -> list[str]:
     """Rules between keys; each runs only if its sections are valid."""
     problems = []
@@ -517,13 +610,14 @@ def load_scene(path_or_mapping, overrides: Mapping | None = None) -> Scene:
     """
     raw, origin = _read(path_or_mapping)
     problems: list[str] = []
-    raw = _apply_overrides(raw, overrides or {}, problems)
+    raw = _apply_overrides(_surface_replaces(raw, overrides or {}), overrides or {}, problems)
     if raw is None:  # an empty file: all defaults
         raw = {}
     if not isinstance(raw, Mapping):
         raise SceneError(origin, problems + [f"{raw!r}: a scene is a mapping of sections {', '.join(_SECTIONS)}"])
     problems.extend(_unknown_key(str(k)) for k in raw if k not in _SECTIONS)
     sections = {name: _build_section(name, raw.get(name), problems) for name in _SECTIONS}
+    sections["roughness"] = _measured(sections["roughness"], raw.get("roughness"), _directory(path_or_mapping), problems)
     problems.extend(_cross_problems(sections))
     if problems:
         raise SceneError(origin, problems)

@@ -1,0 +1,99 @@
+"""What ``lubecontact roughness`` prints and writes: McCool's parameters with their units,
+the sampling and cut-off they were taken at, and a ``roughness:`` scene section."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import yaml
+
+from .mccool import McCool
+from .moments import DEFAULT_CUTOFF_INTERVALS
+
+
+def describe(title: str, p: McCool) -> list[str]:
+    """Lines of one surface's (or the composite's) parameters, each with its unit."""
+    m = p.moments
+    dirs = ("x", "y")[: len(m.m2)]
+    lines = [f"{title}"]
+    lines.append(f"  sampling       = {', '.join(f'd{d} {s * 1e6:.4g} um' for d, s in zip(dirs, m.sampling))}")
+    lines.append(f"  cut-off        = lambda_c {m.cutoff * 1e6:.4g} um (spectral moments, window {m.window}, plane detrended)")
+    lines.append(f"  m0             = {m.m0:.6g} m^2")
+    for name, values, unit in (("m2", m.m2, "1 (mean square slope)"), ("m4", m.m4, "m^-2 (mean square curvature)")):
+        lines.append(f"  {name:<14s} = {', '.join(f'{v:.6g} ({d})' for v, d in zip(values, dirs))} {unit}")
+    lines += [
+        f"  sigma          = {p.sigma:.6g} m ({p.sigma * 1e6:.4g} um)",
+        f"  eta            = {p.asperity_density:.6g} 1/m^2",
+        f"  R_peak         = {p.asperity_radius:.6g} m ({p.asperity_radius * 1e6:.4g} um)",
+        f"  alpha          = {p.alpha:.4g} (eta R_peak sigma = {p.asperity_density * p.asperity_radius * p.sigma:.4g})",
+        f"  sigma_s        = {p.summit_sigma:.6g} m (McCool summit heights)",
+        f"  gamma          = {'n/a (profile)' if p.gamma is None else f'{p.gamma:.4g}'}"
+        + ("" if p.isotropic is None else f" ({'isotropic' if p.isotropic else 'anisotropic'})"),
+    ]
+    lines += [f"  note: {n}" for n in p.notes()]
+    return lines
+
+
+def section_yaml(p: McCool, sources: list[str], split: tuple[float, float] | None = None) -> str:
+    """A ``roughness:`` section a scene can include; the rest as comments."""
+    m = p.moments
+    head = [
+        f"# lubecontact roughness: McCool (1986) parameters of {' + '.join(sources)}",
+        f"# cut-off lambda_c = {m.cutoff:.6g} m (default {DEFAULT_CUTOFF_INTERVALS:g} sampling intervals), "
+        f"window {m.window}, plane detrended",
+        f"# m0 = {m.m0:.6g} m^2, m2 = {', '.join(f'{v:.6g}' for v in m.m2)}, m4 = {', '.join(f'{v:.6g}' for v in m.m4)} m^-2",
+        f"# alpha = {p.alpha:.6g}, sigma_s = {p.summit_sigma:.6g} m, gamma = {p.gamma}",
+    ]
+    if split is not None:
+        head.append(f"# sigma split V_r1, V_r2 = {split[0]:.6g}, {split[1]:.6g} (sigma_i^2 / sigma^2, shear flow factor)")
+    head += [f"# note: {n}" for n in p.notes()]
+    body = {"roughness": {"sigma": p.sigma, "asperity_density": p.asperity_density, "asperity_radius": p.asperity_radius}}
+    return "\n".join(head) + "\n" + yaml.safe_dump(body, sort_keys=False)
+
+
+def write_text(path, text: str) -> None:
+    """Atomic write: the file is there whole or not at all."""
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        tmp.write_text(text)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def run(args) -> int:
+    """``lubecontact roughness``: 0 done, 2 bad input (the reason on stderr, nothing written)."""
+    from .mccool import composite, parameters
+    from .moments import spectral_moments
+    from .reading import SurfaceError, read_surface
+
+    try:
+        if len(args.surfaces) > 2:
+            raise SurfaceError(f"{len(args.surfaces)} surfaces given; allowed: one, or two for their composite")
+        surfaces = [read_surface(f, args.size, args.unit, args.periodic) for f in args.surfaces]
+        # one cut-off for every surface: the given one, else the default of the coarsest sampling
+        cutoff = args.cutoff or DEFAULT_CUTOFF_INTERVALS * max(max(s.dx, s.dy or 0.0) for s in surfaces)
+        params = [parameters(spectral_moments(s, cutoff)) for s in surfaces]
+        blocks = [describe(f"surface {f}", p) for f, p in zip(args.surfaces, params)]
+        split = None
+        result = params[0]
+        if len(params) == 2:
+            result, split = composite(params[0].moments, params[1].moments)
+            blocks.append(describe("composite (moments added: independent surfaces)", result)
+                          + [f"  sigma split    = V_r1 {split[0]:.4g}, V_r2 {split[1]:.4g} (sigma_i^2/sigma^2)"])
+    except SurfaceError as err:
+        print(f"lubecontact: bad input: {err}", file=sys.stderr)
+        return 2
+    print("\n".join(line for block in blocks for line in block))
+    if args.out:
+        try:
+            write_text(args.out, section_yaml(result, list(args.surfaces), split))
+        except OSError as err:
+            print(f"lubecontact: cannot write {args.out}: {err.strerror or err}", file=sys.stderr)
+            return 2
+        print(f"wrote {args.out}")
+    return 0

@@ -1,0 +1,27 @@
+# Measured surfaces (lubecontact.surfaces): the profile spectra of config["surfaces"] with
+# the cut-off of the moments marked and McCool's parameters in the legend. Their resistance
+# curves are ordinary grids (config/figures/fig04_measured.yaml, roughness.surface).
+
+SURFACE_FILES = list(config.get("surfaces") or [])
+SURFACE_CODE = sorted(
+    str(p.relative_to(workflow.basedir)) for p in (Path(workflow.basedir) / "src/lubecontact/surfaces").glob("*.py")
+)
+
+
+rule surfaces_psd:
+    input:
+        surfaces=SURFACE_FILES,
+        code=SURFACE_CODE,
+    output:
+        png=report(
+            "results/figures/surfaces_psd.png",
+            caption="../scripts/surfaces_psd_caption.rst",
+            category="Measured surfaces",
+        ),
+        pdf="results/figures/surfaces_psd.pdf",
+    log:
+        "results/logs/plot/surfaces_psd.log",
+    conda:
+        "../envs/lubecontact.yaml"
+    script:
+        "../scripts/surfaces_psd.py"
