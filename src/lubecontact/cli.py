@@ -55,7 +55,8 @@ def _load(args):
 
 def _summary(ds) -> str:
     lines = [f"effects run: {ds.attrs['effects_run']}"]
-    for name in ("contact_resistance", "friction_coefficient", "contact_force", "fluid_force",
+    for name in ("contact_resistance", "spot_resistance", "macro_constriction_resistance", "film_resistance",
+                 "friction_coefficient", "contact_force", "fluid_force",
                  "min_film_thickness", "iterations", "force_residual", "solve_time"):
         var = ds[name]
         values = var.values.ravel()

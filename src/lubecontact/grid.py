@@ -346,12 +346,16 @@ def plan_chunks(grids: Iterable[FigureGrid], cases_per_job: int | None = None) -
 SOLVER_ROOTS = ("solver", "scene")
 
 
-def _imported_modules(tree: ast.AST) -> Iterator[str]:
-    """Names of the package's own modules a module imports (relative or lubecontact.*)."""
+def _imported_modules(tree: ast.AST, depth: int = 0) -> Iterator[str]:
+    """Names of the package's own top-level modules (or subpackages) a module imports
+    (relative or lubecontact.*); ``depth`` 1 for a module of a subpackage, whose imports
+    of its siblings (``from .x``) are not listed (the whole subpackage counts)."""
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom):
             module = node.module or ""
             if node.level == 0 and not module.startswith("lubecontact"):
+                continue
+            if 0 < node.level <= depth:  # a sibling in the same subpackage
                 continue
             inner = module.removeprefix("lubecontact").lstrip(".") if node.level == 0 else module
             if inner:
@@ -371,14 +375,23 @@ def solver_sources(package_dir, roots: Sequence[str] = SOLVER_ROOTS) -> list[Pat
     so the plotting, grid, sweep and CLI modules count only if the solver imports them."""
     package_dir = Path(package_dir)
     todo, found = list(roots), {"__init__"}
+    files = {package_dir / "__init__.py"}
     while todo:
         name = todo.pop()
         path = package_dir / f"{name}.py"
-        if name in found or not path.is_file():
+        if name in found:
+            continue
+        if path.is_file():
+            members, depth = [path], 0
+        elif (package_dir / name / "__init__.py").is_file():  # a subpackage: all its modules
+            members, depth = sorted((package_dir / name).rglob("*.py")), 1
+        else:
             continue
         found.add(name)
-        todo.extend(_imported_modules(ast.parse(path.read_text(), filename=str(path))))
-    return sorted(package_dir / f"{name}.py" for name in found)
+        files.update(members)
+        for member in members:
+            todo.extend(_imported_modules(ast.parse(member.read_text(), filename=str(member)), depth))
+    return sorted(files)
 
 
 def sources_fingerprint(paths: Iterable) -> str:

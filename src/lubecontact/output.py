@@ -10,7 +10,10 @@ from . import __version__
 # name: (units, long_name). Every variable a case writes is listed here, so that no
 # quantity leaves the model without its unit.
 SCALARS = {
-    "contact_resistance": ("ohm", "electrical contact resistance (Eqs. 15-17, nodes in parallel)"),
+    "contact_resistance": ("ohm", "electrical contact resistance of the whole path (spots, film, cluster)"),
+    "spot_resistance": ("ohm", "resistance of the metal spots in parallel (Eqs. 15-17)"),
+    "macro_constriction_resistance": ("ohm", "Greenwood cluster constriction resistance (0 when not modelled)"),
+    "film_resistance": ("ohm", "resistance of the lubricant film in parallel over the domain (inf when insulating)"),
     "friction_coefficient": ("1", "friction coefficient (boundary friction of solid load + fluid shear) / applied force"),
     "fluid_force": ("N", "load carried by the fluid film (Eq. 5)"),
     "contact_force": ("N", "load carried by asperity contact (Eq. 11 summed over nodes)"),
@@ -26,7 +29,7 @@ SCALARS = {
     "deformation_residual": ("m", "last change of the deformation field in the coupling loop (max norm)"),
     "reynolds_residual": ("1", "relative residual of the discrete Reynolds complementarity problem"),
     "solve_time": ("s", "wall time of the solve, model assembly included"),
-    "open_circuit": ("1", "1 if no conducting contact is representable (resistance is +inf)"),
+    "open_circuit": ("1", "1 if contact_resistance exceeds interface.open_resistance"),
     "clamped_nodes": ("1", "nodes where A_r/A_n was clamped for the alleviation factor (Eq. 16)"),
     "speed": ("m s-1", "sliding speed U of the block"),
 }

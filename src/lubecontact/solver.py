@@ -106,7 +106,10 @@ class Model:
             "asperity_contact": self.contact is not None,
             "plasticity": self.contact is not None and e.plasticity,
             "elastic_deformation": self.deformation is not None,
-            "alleviation": self.contact is not None and e.alleviation,
+            "alleviation": self.contact is not None and e.alleviation and not e.macro_constriction,
+            "macro_constriction": e.macro_constriction,
+            "film_conduction": e.film_conduction,
+            "tunnelling": e.tunnelling,
         }
 
 
@@ -474,7 +477,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     ``initial`` ({"z": float, "delta": array}) warm-starts the coupling loop (a sweep's
     continuation); a cold start must give the same answer within tolerance.
     """
-    from .electrical import contact_resistance
+    from .electrical import electrical_path
     from .friction import fluid_shear_force, friction_coefficient
     from .output import case_dataset
 
@@ -495,15 +498,13 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         notes.append("NOT CONVERGED: " + diag["failure"])
     mesh = model.mesh
     area = mesh.nodal_area
+    path = electrical_path(scene, mesh, model.contact, state.film)
+    notes.extend(path.notes)
     if model.contact is not None:
-        area_fraction = model.contact.area_fraction(state.film)
-        resistance, clamped = contact_resistance(
-            model.contact.log_conductance(state.film), area_fraction, area, scene.effects.alleviation
-        )
-        real_area = float(np.sum(area_fraction * area))
+        real_area = float(np.sum(model.contact.area_fraction(state.film) * area))
     else:
-        resistance, clamped, real_area = np.inf, 0, 0.0
-        notes.append("asperity_contact off: no conducting path (open circuit by construction)")
+        real_area = 0.0
+        notes.append("asperity_contact off: no metallic path")
     shear = 0.0
     if model.hydrodynamic:
         shear = fluid_shear_force(
@@ -513,7 +514,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     force = scene.operating.force
     carried = state.total_force
     scalars = {
-        "contact_resistance": resistance,
+        **path.scalars(scene.interface.open_resistance),
         "friction_coefficient": friction_coefficient(scene.interface.boundary_friction, state.contact_force, shear, force),
         "fluid_force": state.fluid_force,
         "contact_force": state.contact_force,
@@ -529,8 +530,6 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         "deformation_residual": diag["deformation_residual"],
         "reynolds_residual": diag["reynolds_residual"],
         "solve_time": time.perf_counter() - start,
-        "open_circuit": int(not np.isfinite(resistance)),
-        "clamped_nodes": int(clamped),
         "speed": scene.operating.speed,
     }
     field_data = None
