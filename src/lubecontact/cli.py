@@ -77,6 +77,10 @@ def main(argv=None) -> int:
     except (SceneError, ValueError) as err:
         print(f"lubecontact: bad input:\n{err}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    from .validity import scene_warnings
+
+    for warning in scene_warnings(scene):
+        print(f"lubecontact: warning: {warning}", file=sys.stderr)
     if args.command == "show":
         print(f"# hash: {scene.hash}")
         print(scene.canonical_yaml(), end="")

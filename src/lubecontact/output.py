@@ -22,7 +22,7 @@ SCALARS = {
     "min_film_thickness": ("m", "minimum mean-plane separation h over the mesh (may be negative)"),
     "central_film_thickness": ("m", "mean-plane separation h at x = 0, y = 0 (may be negative)"),
     "separation": ("m", "vertical position z of the cylinder (Eq. 3)"),
-    "real_contact_area": ("m2", "real area of asperity contact (Eq. 15 integrand, summed over nodes)"),
+    "real_contact_area": ("m2", "real area of asperity contact (Eq. 15 integrand, A_r/A_n <= 1, summed over nodes)"),
     "converged": ("1", "1 if the coupled solve met its tolerances, else 0"),
     "iterations": ("1", "outer (deformation) iterations of the coupled solve"),
     "force_residual": ("N", "applied force minus fluid and contact forces (Eq. 18)"),
@@ -32,6 +32,7 @@ SCALARS = {
     "open_circuit": ("1", "1 if contact_resistance exceeds interface.open_resistance"),
     "clamped_nodes": ("1", "nodes where A_r/A_n was clamped for the alleviation factor (Eq. 16)"),
     "speed": ("m s-1", "sliding speed U of the block"),
+    "valid": ("1", "1 if the case stays within every sub-model's range, else 0 (see the validity attribute)"),
 }
 
 FIELDS = {
@@ -41,7 +42,7 @@ FIELDS = {
     "deformation": ("m", "macro elastic deformation delta of both surfaces (influence coefficients)"),
 }
 
-INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes")
+INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes", "valid")
 
 
 def _attrs(table, name):

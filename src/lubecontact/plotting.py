@@ -5,7 +5,8 @@ swept dimensions and ``speed``. One curve is drawn per combination of the swept
 dimensions, in one panel per x quantity: the sliding speed U (Figs. 3-11), the Stribeck
 normalisation U/F (Figs. 8-9) or the Hersey number mu U/F (Figs. 10-11).
 
-Nothing is hidden: a point that did not converge (``converged`` = 0) gets a red cross; a
+Nothing is hidden: a point outside a sub-model's range (``valid`` = 0, see
+:mod:`lubecontact.validity`) is drawn hollow; a point that did not converge (``converged`` = 0) gets a red cross; a
 point whose value is +inf (``contact_resistance`` of an open circuit) is drawn as a
 triangle on the top edge of the panel, where the value leaves the axis. A NaN is an error.
 
@@ -56,6 +57,7 @@ DISPLAY_UNITS = {
 
 NOT_CONVERGED_STYLE = {"marker": "x", "color": "tab:red", "markersize": 8, "markeredgewidth": 1.6, "linestyle": "none"}
 OPEN_STYLE = {"marker": "^", "markersize": 7, "linestyle": "none", "clip_on": False}
+OUTSIDE_STYLE = {"marker": "o", "markersize": 5, "markerfacecolor": "white", "linestyle": "none"}
 
 
 def unit_label(units: str) -> str:
@@ -105,7 +107,7 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     axes = fig.subplots(1, len(panels), squeeze=False, sharey=True)[0]
     shape = [ds.sizes[d] for d in dims]
     colours = _colours(int(np.prod(shape)))
-    marks = {"not converged": False, "open": False}
+    marks = {"not converged": False, "open": False, "outside": False}
     for ax, x_name in zip(axes, panels):
         x_all = x_quantity(ds, x_name)
         x_all, y_all = xr.broadcast(x_all, y)
@@ -118,6 +120,10 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
             failed = curve["converged"].transpose("speed").values == 0
             label = _label(curve, swept, plot.get("legend")) if dims else None
             ax.plot(xs, np.where(infinite, np.nan, ys), marker="o", markersize=3, color=colours[k], label=label)
+            if "valid" in curve:  # hollow: outside a sub-model's range (the case's validity attribute)
+                outside = (curve["valid"].transpose("speed").values == 0) & ~infinite
+                ax.plot(xs[outside], ys[outside], markeredgecolor=colours[k], **OUTSIDE_STYLE)
+                marks["outside"] |= bool(outside.any())
             # +inf is drawn on the top edge: x in data, y in axes coordinates (1 = top)
             top = ax.get_xaxis_transform()
             if infinite.any():
@@ -137,6 +143,9 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     if marks["not converged"]:
         handles.append(Line2D([], [], **NOT_CONVERGED_STYLE))
         labels.append("not converged")
+    if marks["outside"]:
+        handles.append(Line2D([], [], markeredgecolor="0.3", **OUTSIDE_STYLE))
+        labels.append("outside a sub-model's range (case validity)")
     if marks["open"]:
         handles.append(Line2D([], [], color="0.3", **OPEN_STYLE))
         labels.append(f"{y_name.replace('_', ' ')} = \u221e (open circuit), at top edge")

@@ -478,6 +478,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     continuation); a cold start must give the same answer within tolerance.
     """
     from .electrical import electrical_path
+    from .validity import assess
     from .friction import fluid_shear_force, friction_coefficient
     from .output import case_dataset
 
@@ -500,11 +501,13 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     area = mesh.nodal_area
     path = electrical_path(scene, mesh, model.contact, state.film)
     notes.extend(path.notes)
-    if model.contact is not None:
-        real_area = float(np.sum(model.contact.area_fraction(state.film) * area))
+    if model.contact is not None:  # a node with A_r/A_n > 1 is fully in contact (validity: area_capped)
+        real_area = float(np.sum(np.minimum(model.contact.area_fraction(state.film), 1.0) * area))
     else:
         real_area = 0.0
         notes.append("asperity_contact off: no metallic path")
+    validity = assess(scene, mesh, model.contact, state, model.hydrodynamic)
+    notes.extend(f"validity {flag}: {note}" for flag, note in validity.items())
     shear = 0.0
     if model.hydrodynamic:
         shear = fluid_shear_force(
@@ -531,6 +534,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         "reynolds_residual": diag["reynolds_residual"],
         "solve_time": time.perf_counter() - start,
         "speed": scene.operating.speed,
+        "valid": int(not validity),
     }
     field_data = None
     if fields:
@@ -541,6 +545,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
             "deformation": state.delta,
         }
     ds = case_dataset(requested, scalars, field_data, mesh, model.effects_run, "; ".join(notes))
+    ds.attrs["validity"] = ",".join(validity) or "ok"
     if return_state:
         return ds, state
     return ds
