@@ -257,6 +257,8 @@ def _scene(base, overrides: Mapping, where: str):
 def expand(figure: str, spec: Mapping, root=".") -> FigureGrid:
     """All cases of one figure grid, each scene validated now (a bad value fails here,
     before anything runs, with the figure, the key and the value in the message)."""
+    from .mesh import nodes_x  # the automatic inlet adds columns at high speed
+
     where = f"figure {figure}"
     if "scene" not in spec:
         raise GridError(f"{where}: no base scene (key 'scene')")
@@ -298,7 +300,7 @@ def expand(figure: str, spec: Mapping, root=".") -> FigureGrid:
     for index in np.ndindex(cases.shape):
         point = {k: v for d, i in zip(dims, index) for k, v in zip(d.keys, d.values[i])}
         scene = _scene(base, point, f"{where}, point {point}")
-        cases[index] = CaseSpec(scene.hash, scene_path, {**fixed, **point}, scene.mesh.nx * scene.mesh.ny)
+        cases[index] = CaseSpec(scene.hash, scene_path, {**fixed, **point}, nodes_x(scene) * scene.mesh.ny)
     return FigureGrid(figure, dict(spec), base, tuple(dims), cases)
 
 
