@@ -80,6 +80,8 @@ def figure_spec(figure: str, figure_dir, overrides: Mapping | None = None) -> di
 
     ``grid: figXX`` makes the figure plot the cases of figXX: its grid keys are taken from
     figXX, itself resolved the same way (so an override of figXX reaches both figures).
+    With ``also_set`` (dotted keys) those overrides are added to figXX's ``set``: the same
+    grid with, e.g., other effects, as new cases.
     """
     return _resolve(figure, Path(figure_dir), overrides or {}, ())
 
@@ -101,6 +103,8 @@ def _resolve(figure: str, figure_dir: Path, overrides: Mapping, referrers: tuple
             raise GridError(f"{path}: 'grid: {parent}' borrows the grid of {parent}; remove {', '.join(own)}")
         borrowed = _resolve(parent, figure_dir, overrides, referrers + (figure,))
         spec.update({k: borrowed[k] for k in GRID_KEYS if k in borrowed})
+        if spec.get("also_set"):  # the borrowed grid with more overrides: its own cases
+            spec["set"] = {**(spec.get("set") or {}), **spec["also_set"]}
     return spec
 
 

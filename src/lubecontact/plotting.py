@@ -90,8 +90,13 @@ def _display(ds: xr.Dataset, coord: str, unit: str | None) -> float:
     return value / size
 
 
-def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
-    """The figure of ``plot`` = {y, x: [quantities], xscale, yscale, legend} from ``ds``."""
+def render(ds: xr.Dataset, plot: Mapping, title: str = "", reference: xr.Dataset | None = None) -> Figure:
+    """The figure of ``plot`` = {y, x: [quantities], xscale, yscale, legend} from ``ds``;
+    ``kind: speed_limit`` draws :func:`render_speed_limit` instead. ``reference`` (a figure
+    Dataset with the same swept dimensions, e.g. the paper's model beside the full path) is
+    drawn dashed in the same colours, clipped to the axes ``ds`` sets."""
+    if plot.get("kind", "curves") == "speed_limit":
+        return render_speed_limit(ds, plot, title)
     y_name = plot["y"]
     y = ds[y_name]
     values = y.values
@@ -136,6 +141,8 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
             marks["not converged"] |= bool(failed.any())
         ax.set_xscale(plot.get("xscale", "log"))
         ax.set_yscale(plot.get("yscale", "log"))
+        if reference is not None:
+            _draw_reference(ax, reference, x_name, y_name, dims, colours)
         ax.set_xlabel(axis_label(x_all.attrs["long_name"], x_all.attrs["units"]))
         ax.grid(True, which="major", alpha=0.3)
     axes[0].set_ylabel(axis_label(y.attrs["long_name"], y.attrs["units"]))
@@ -143,6 +150,9 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     if marks["not converged"]:
         handles.append(Line2D([], [], **NOT_CONVERGED_STYLE))
         labels.append("not converged")
+    if reference is not None:
+        handles.append(Line2D([], [], color="0.3", linestyle="--"))
+        labels.append(reference.attrs.get("reference_label", "dashed: the paper's model (spots only)"))
     if marks["outside"]:
         handles.append(Line2D([], [], markeredgecolor="0.3", **OUTSIDE_STYLE))
         labels.append("outside a sub-model's range (case validity)")
@@ -155,6 +165,92 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     if title:
         fig.suptitle(title, fontsize="medium")
     return fig
+
+
+def _draw_reference(ax, reference: xr.Dataset, x_name: str, y_name: str, dims: Sequence[str], colours) -> None:
+    """The reference's curves, dashed and clipped to the current y range (the paper's open
+    contacts reach 1e66 ohm; the axes stay those of the data drawn solid)."""
+    bottom, top = ax.get_ylim()
+    x_all, y_all = xr.broadcast(x_quantity(reference, x_name), reference[y_name])
+    shape = [reference.sizes[d] for d in dims]
+    for k, index in enumerate(np.ndindex(*shape)):
+        at = dict(zip(dims, index))
+        ys = y_all.isel(at).transpose("speed").values
+        ax.plot(x_all.isel(at).transpose("speed").values, np.where(np.isfinite(ys), ys, np.nan),
+                linestyle="--", linewidth=1.0, color=colours[k])
+    ax.set_ylim(bottom, top)
+
+
+def highest_closed_speed(ds: xr.Dataset) -> xr.DataArray:
+    """Per swept combination: the highest speed U* (m/s) at which contact_resistance is still
+    below the scene's interface.open_resistance, from the first opening along speed,
+    interpolated in log R against log U between the last closed and the first open speed.
+    NaN where the contact is open at the lowest speed; +inf where it never opens."""
+    import yaml
+
+    threshold = yaml.safe_load(str(ds["scene"].values.flat[0]))["interface"]["open_resistance"]
+    resistance = ds["contact_resistance"].transpose(..., "speed")
+    speeds = ds["speed"].values
+    out = np.full(resistance.shape[:-1], np.nan)
+    for index in np.ndindex(out.shape):
+        r = resistance.values[index]
+        opened = np.flatnonzero(~(r <= threshold))
+        if opened.size == 0:
+            out[index] = np.inf
+        elif opened[0] > 0:
+            i = opened[0]
+            lo, hi = np.log(r[i - 1]), np.log(min(r[i], np.finfo(float).max))
+            t = (np.log(threshold) - lo) / (hi - lo)
+            out[index] = float(np.exp(np.log(speeds[i - 1]) + t * (np.log(speeds[i]) - np.log(speeds[i - 1]))))
+    dims = [d for d in resistance.dims if d != "speed"]
+    return xr.DataArray(out, dims=dims, coords={d: ds[d] for d in dims},
+                        attrs={"units": "m s-1", "long_name": "highest sliding speed with the contact closed",
+                               "open_resistance": threshold})
+
+
+def render_speed_limit(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
+    """A map of :func:`highest_closed_speed` over the two swept dimensions (``plot['map']``:
+    [x dimension, y dimension]), log colour scale, each cell labelled with its value."""
+    from matplotlib.colors import LogNorm
+
+    limit = highest_closed_speed(ds)
+    x_dim, y_dim = plot.get("map") or [d for d in limit.dims]
+    limit = limit.transpose(y_dim, x_dim)
+    speeds = ds["speed"].values
+    shown = np.clip(np.nan_to_num(limit.values, nan=speeds.min(), posinf=speeds.max()), speeds.min(), speeds.max())
+    fig = Figure(figsize=(6.4, 4.8), layout="constrained")
+    ax = fig.subplots()
+    xs, ys = np.arange(limit.sizes[x_dim]), np.arange(limit.sizes[y_dim])
+    mesh = ax.pcolormesh(xs, ys, shown, norm=LogNorm(speeds.min(), speeds.max()), cmap="viridis", shading="nearest")
+    for j in ys:
+        for i in xs:
+            value = limit.values[j, i]
+            text = (f"> {speeds.max():g}" if value == np.inf else f"< {speeds.min():g}" if np.isnan(value)
+                    else f"{value:.2g}")
+            ax.text(i, j, text, ha="center", va="center", fontsize="small",
+                    color="white" if shown[j, i] < np.sqrt(speeds.min() * speeds.max()) else "black")
+    for axis, dim, ticks in ((ax.xaxis, x_dim, xs), (ax.yaxis, y_dim, ys)):
+        coord = ds[dim]
+        axis.set_ticks(ticks, [f"{v:g}" for v in coord.values / _unit_size(plot, dim, coord)])
+    units = plot.get("units") or {}
+    ax.set_xlabel(f"{ds[x_dim].attrs.get('long_name', x_dim).split(' (')[0]} ({units.get(x_dim, unit_label(ds[x_dim].attrs.get('units', '')))})")
+    ax.set_ylabel(f"{ds[y_dim].attrs.get('long_name', y_dim).split(' (')[0]} ({units.get(y_dim, unit_label(ds[y_dim].attrs.get('units', '')))})")
+    bar = fig.colorbar(mesh, ax=ax)
+    bar.set_label(f"highest sliding speed with R < {limit.attrs['open_resistance']:g} Ω (m/s)")
+    if title:
+        fig.suptitle(title, fontsize="medium")
+    return fig
+
+
+def _unit_size(plot: Mapping, dim: str, coord: xr.DataArray) -> float:
+    """Size of the display unit of a map axis (``plot['units'][dim]``) in the coordinate's units."""
+    unit = (plot.get("units") or {}).get(dim)
+    if unit is None:
+        return 1.0
+    base, size = DISPLAY_UNITS[unit]
+    if coord.attrs.get("units") != base:
+        raise ValueError(f"display unit {unit!r} does not fit {dim} in {coord.attrs.get('units')!r}")
+    return size
 
 
 def _colours(n: int) -> list:
