@@ -168,9 +168,13 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "", reference: xr.Dataset
 
 
 def _draw_reference(ax, reference: xr.Dataset, x_name: str, y_name: str, dims: Sequence[str], colours) -> None:
-    """The reference's curves, dashed and clipped to the current y range (the paper's open
-    contacts reach 1e66 ohm; the axes stay those of the data drawn solid)."""
+    """The reference's curves, dashed; the y range reaches down to the reference's smallest
+    value but its top stays that of the data drawn solid (the paper's open contacts reach
+    1e66 ohm: above the top they are clipped)."""
     bottom, top = ax.get_ylim()
+    finite = reference[y_name].values[np.isfinite(reference[y_name].values)]
+    if finite.size and finite.min() < bottom and (ax.get_yscale() != "log" or finite.min() > 0):
+        bottom = finite.min() / 2 if ax.get_yscale() == "log" else finite.min()
     x_all, y_all = xr.broadcast(x_quantity(reference, x_name), reference[y_name])
     shape = [reference.sizes[d] for d in dims]
     for k, index in enumerate(np.ndindex(*shape)):
