@@ -50,7 +50,10 @@ ENTRY_POINTS = [
     ("flow_factors", "lubecontact.flow_factors.pressure_flow_factor", {"operating.speed": 0.1}),
     ("cavitation", "lubecontact.reynolds._active_set", {"operating.speed": 0.1}),
     ("plasticity", "lubecontact.asperity.hardness_ratio", {"operating.speed": 0.1}),
-    ("alleviation", "lubecontact.electrical.alleviation_factor", {"operating.speed": 0.1}),
+    ("alleviation", "lubecontact.electrical.spots.alleviation_factor", {"operating.speed": 0.1}),
+    ("macro_constriction", "lubecontact.electrical.cluster.ClusterOperator", {"effects.macro_constriction": True}),
+    ("film_conduction", "lubecontact.electrical.film.film_log_conductance", {"effects.film_conduction": True}),
+    ("tunnelling", "lubecontact.electrical.film.simmons_log_specific_conductance", {"effects.tunnelling": True}),
 ]
 
 

@@ -97,3 +97,12 @@ def test_cli_prints_the_effects_that_ran(tmp_path, capsys):
     code = main(["solve", str(SCENES / "dry_static.yaml"), "--set", "mesh.nx=41", "--set", "mesh.ny=11", "--out", str(out)])
     assert code == 0 and out.exists()
     assert "effects run: asperity_contact,plasticity,elastic_deformation,alleviation" in capsys.readouterr().out
+
+
+def test_tin_connector_has_the_whole_path(solved):
+    """Table 1 with the full electrical path at 0.1 m/s: cluster term in series, a finite film
+    in parallel, ~0.2 mOhm, a closed contact (10 ohm threshold)."""
+    scene, ds = solved("tin_connector")
+    assert {"macro_constriction", "film_conduction"} <= ran(ds) and "alleviation" not in ran(ds)
+    assert 0.0 < float(ds.macro_constriction_resistance) < float(ds.contact_resistance) < 1e-3
+    assert 1e9 < float(ds.film_resistance) < 1e14 and int(ds.open_circuit) == 0

@@ -14,6 +14,7 @@ import xarray as xr
 import yaml
 
 from lubecontact import grid, load_scene
+from lubecontact.mesh import build_mesh
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE1 = ROOT / "config" / "scenes" / "table1.yaml"
@@ -99,7 +100,7 @@ def test_expand_case_ids_are_the_scene_hashes():
             case = g.cases[i, j]
             assert case.id == expected
             assert load_scene(case.scene, case.set).hash == expected  # what a job rebuilds
-            assert case.nodes == 15 * 11
+            assert case.nodes == build_mesh(load_scene(case.scene, case.set)).nodal_area.size  # inlet columns included
 
 
 def test_identical_scenes_across_figures_are_one_case():
@@ -286,3 +287,22 @@ def test_collect_refuses_a_file_of_another_scene_or_speed():
         grid.collect(g.layout(), wrong_hash)
     with pytest.raises(grid.GridError, match="speed"):
         grid.collect(g.layout(), lambda case_id: fake_case(cases[case_id], 0.5e-6, 123.0))
+
+
+def test_solver_sources_take_a_subpackage_whole_and_follow_its_imports(tmp_path):
+    pkg = tmp_path / "pkg"
+    (pkg / "sub").mkdir(parents=True)
+    files = {
+        "__init__.py": "",
+        "solver.py": "from .sub import f\n",
+        "scene.py": "",
+        "sub/__init__.py": "from .a import f\n",
+        "sub/a.py": "from ..helper import h\nfrom . import b\n",
+        "sub/b.py": "",
+        "helper.py": "",
+        "plotting.py": "from .sub import f\n",
+    }
+    for name, text in files.items():
+        (pkg / name).write_text(text)
+    found = {str(p.relative_to(pkg)) for p in grid.solver_sources(pkg)}
+    assert found == {"__init__.py", "solver.py", "scene.py", "sub/__init__.py", "sub/a.py", "sub/b.py", "helper.py"}

@@ -29,8 +29,8 @@ TABLE1 = {
         "hardness_model": "wadwalkar",
         "height_std": "sigma",
     },
-    "lubricant": {"viscosity": 0.1},
-    "interface": {"boundary_friction": 0.1},
+    "lubricant": {"viscosity": 0.1, "resistivity": 1.0e12},
+    "interface": {"boundary_friction": 0.1, "barrier_height": 1.4, "open_resistance": 10.0},
     "operating": {"force": 5.0, "speed": 0.1},
     "effects": dict.fromkeys(
         [
@@ -43,7 +43,8 @@ TABLE1 = {
             "alleviation",
         ],
         True,
-    ),
+    )
+    | dict.fromkeys(["macro_constriction", "film_conduction", "tunnelling"], False),
     "mesh": {"nx": 51, "ny": 51, "x_min": "auto", "x_max": "auto"},
     "solver": {"tolerance": 1e-6, "max_iterations": 200},
 }
@@ -166,7 +167,8 @@ def test_effects_auto():
     scene = load_scene({"effects": "auto"})
     assert scene.effects.auto is True
     flags = {k: getattr(scene.effects, k) for k in TABLE1["effects"]}
-    assert flags == {k: "reynolds" if k == "cavitation" else True for k in TABLE1["effects"]}
+    # the paper's effects on (cavitation as its option name), the electrical path's beyond it off
+    assert flags == {**TABLE1["effects"], "cavitation": "reynolds"}
     assert "effects: auto" in scene.canonical_yaml()
     assert scene.hash != load_scene({}).hash  # auto is a distinct case
     assert load_scene({}, {"effects": "auto"}) == scene
@@ -175,7 +177,8 @@ def test_effects_auto():
 def test_effects_flag_override_ends_auto():
     scene = load_scene({"effects": "auto"}, {"effects.hydrodynamics": "false"})
     assert scene.effects.auto is False and scene.effects.hydrodynamics is False
-    assert all(getattr(scene.effects, k) for k in TABLE1["effects"] if k != "hydrodynamics")
+    expected = {**TABLE1["effects"], "cavitation": "reynolds"}  # the option name of `true`
+    assert all(getattr(scene.effects, k) == v for k, v in expected.items() if k != "hydrodynamics")
 
 
 def test_frozen():

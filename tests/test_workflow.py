@@ -96,9 +96,11 @@ def fresh(tmp_path_factory):
 @pytest.mark.slow
 def test_tiny_config_plans_every_figure(fresh):
     # test.yaml: 6 grids of 2 curves on the same coarse mesh, 5 with the base value, so the
-    # baseline curve is shared: 1 + 5 + 1 curves; fig04_measured: 2 surfaces, 9 jobs of 4
-    # speeds; 11 figures.
-    assert planned(fresh, *TINY) == Counter(solve=9, collect=11, plot=11, all=1, **ACCURACY, **SURFACES)
+    # baseline curve is shared: 1 + 5 + 1 curves; fig04_measured: 2 surfaces: 9 jobs of 4
+    # speeds. With the full electrical path (fig04p-10p): 1 + 4 curves; fig12: 2 x 2 curves
+    # of 3 speeds, one of them 3 of the 4 cases of fig08p's 10 N curve (the figure planned
+    # first claims them, the other keeps its own: one job more): 4 jobs; 16 figures.
+    assert planned(fresh, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY, **SURFACES)
 
 
 @pytest.mark.slow
@@ -106,12 +108,13 @@ def test_default_grids(fresh):
     # fig03: 7 meshes up to 201^2 (51^2 is the baseline); fig04: 4 sigma, fig06: 4 radii,
     # fig10: 4 viscosities, each with the baseline; fig08: 5 forces with the baseline;
     # fig05/07/09/11 reuse those grids: 7 + 3 + 3 + 4 + 3 = 20 curves; fig04_alpha: 4 (sigma,
-    # R_peak) pairs with the baseline, fig04_measured: 2 surfaces: 25 curves of 26 speeds.
-    assert planned(fresh) == Counter(solve=25, collect=11, plot=11, all=1, **ACCURACY, **SURFACES)
+    # R_peak) pairs with the baseline, fig04_measured: 2 surfaces: 25 curves of 26 speeds;
+    # the full path (fig04p-10p) 1 + 3 + 3 + 4 + 3 = 14 curves of 26 speeds; fig12: 16 curves of 10.
+    assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
     cases = {c for g in grid.expand_all(specs, ROOT).values() for c in g.unique_cases()}
-    assert len(cases) == 25 * 26
+    assert len(cases) == 25 * 26 + 14 * 26 + 16 * 10
 
 
 @pytest.mark.slow
@@ -197,20 +200,20 @@ def test_plot_style_change_only_redraws(built):
     with edited(built / "config" / "figures" / "fig06.yaml", 'title: "cylinder radius R"', 'title: "radius"'):
         assert planned(built, *TINY) == Counter(plot=1, all=1)
     with edited(built / "src" / "lubecontact" / "plotting.py", '"\\u2013",\n', '"-",\n'):
-        assert planned(built, *TINY) == Counter(plot=11, all=1)
+        assert planned(built, *TINY) == Counter(plot=16, all=1)
 
 
 @pytest.mark.slow
 def test_one_grid_value_solves_one_curve(built):
     with edited(built / "config" / "test.yaml", "roughness.sigma: [0.5e-6, 1.0e-6]", "roughness.sigma: [0.5e-6, 2.0e-6]"):
-        assert planned(built, *TINY) == Counter(solve=1, collect=2, plot=2, all=1)  # fig04, fig05
+        assert planned(built, *TINY) == Counter(solve=2, collect=3, plot=3, all=1)  # fig04, fig05, fig04p
 
 
 @pytest.mark.slow
 def test_solver_change_resolves_every_case_and_content_decides(built):
     solver = built / "src" / "lubecontact" / "solver.py"
     with edited(solver, '"""', '"""Edited. '):
-        assert planned(built, *TINY) == Counter(solve=9, collect=11, plot=11, all=1, **ACCURACY)
+        assert planned(built, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY)
     # restored: newer time stamp, same content -> nothing to do
     assert planned(built, *TINY) == Counter()
 
@@ -257,11 +260,13 @@ def test_new_speed_solves_only_new_cases(built):
     before = {p.name: p.stat().st_ino for p in cases.glob("*.nc")}
     config = built / "config" / "test.yaml"
     config.write_text(config.read_text().replace("    speeds: *speeds\n", "    speeds: [1.0e-3, 0.1, 1.0, 3.0, 10.0]\n", 1))
-    assert planned(built, *TINY) == Counter(solve=2, collect=2, plot=2, all=1)
+    # fig04 and fig04p, 2 curves each; fig04p's chunk of the full-path baseline changes, so the
+    # figures sharing that curve (fig06p, fig08p, fig10p) collect again
+    assert planned(built, *TINY) == Counter(solve=4, collect=6, plot=6, all=1)
     snakemake(built, *PROFILE, "--cores", "2", *TINY)
     after = {p.name: p.stat().st_ino for p in cases.glob("*.nc")}
     assert {name: after[name] for name in before} == before  # no case file rewritten
-    assert len(after) - len(before) == 2  # 3 m/s for sigma = 0.5 and 1 um
+    assert len(after) - len(before) == 4  # 3 m/s for sigma = 0.5 and 1 um, paper and full path
     logs = "".join(p.read_text() for p in (built / "results" / "logs" / "solve").glob("fig04_*.log"))
     assert logs.count("kept") == 4 and logs.count("converged") >= 2
     assert xr.load_dataset(built / "results" / "data" / "fig04.nc").sizes["speed"] == 5

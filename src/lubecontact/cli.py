@@ -66,7 +66,8 @@ def _load(args):
 
 def _summary(ds) -> str:
     lines = [f"effects run: {ds.attrs['effects_run']}"]
-    for name in ("contact_resistance", "friction_coefficient", "contact_force", "fluid_force",
+    for name in ("contact_resistance", "spot_resistance", "macro_constriction_resistance", "film_resistance",
+                 "friction_coefficient", "contact_force", "fluid_force",
                  "min_film_thickness", "iterations", "force_residual", "solve_time"):
         var = ds[name]
         values = var.values.ravel()
@@ -91,6 +92,10 @@ def main(argv=None) -> int:
     except (SceneError, ValueError) as err:
         print(f"lubecontact: bad input:\n{err}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    from .validity import scene_warnings
+
+    for warning in scene_warnings(scene):
+        print(f"lubecontact: warning: {warning}", file=sys.stderr)
     if args.command == "show":
         print(f"# hash: {scene.hash}")
         print(scene.canonical_yaml(), end="")

@@ -210,7 +210,7 @@ def study_points(spec: Mapping) -> list[dict]:
     """
     import lubecontact
 
-    from .mesh import domain_x
+    from .mesh import domain_x, nodes_x
 
     base = lubecontact.load_scene(spec["scene"], spec.get("set") or {})
     points = []
@@ -221,15 +221,16 @@ def study_points(spec: Mapping) -> list[dict]:
         domain = spec.get("domain")
         if domain:
             n = int(domain["mesh"])
-            x_min, x_max = domain_x(base.replace({"mesh.nx": n, "mesh.ny": n}))
-            dx = (x_max - x_min) / (n - 1)
+            reference = base.replace({"mesh.nx": n, "mesh.ny": n, "operating.speed": speed})
+            x_min, x_max = domain_x(reference)  # the automatic inlet of this speed (it follows the film)
+            dx = (x_max - x_min) / (nodes_x(reference) - 1)
             for scale in domain["scales"]:
                 # whole cells added (removed) at each end: the nodes stay where the reference
                 # mesh has them, so only the domain's truncation changes, not the grid's offset
                 left = round(-x_min * (float(scale) - 1.0) / dx)
                 right = round(x_max * (float(scale) - 1.0) / dx)
                 points.append({"part": "domain", "speed": speed, "key": float(scale), "overrides": {
-                    "mesh.nx": n + left + right, "mesh.ny": n, "mesh.x_min": x_min - left * dx, "mesh.x_max": x_max + right * dx}})
+                    "mesh.nx": nodes_x(reference) + left + right, "mesh.ny": n, "mesh.x_min": x_min - left * dx, "mesh.x_max": x_max + right * dx}})
         tolerance = spec.get("tolerance")
         if tolerance:
             n = int(tolerance["mesh"])
@@ -247,6 +248,7 @@ def run_study(spec: Mapping, log: Callable[[str], None] = print) -> xr.Dataset:
     import lubecontact
 
     from .grid import key_value
+    from .mesh import build_mesh
 
     base = lubecontact.load_scene(spec["scene"], spec.get("set") or {})
     quantities = list(spec["quantities"])
@@ -264,10 +266,14 @@ def run_study(spec: Mapping, log: Callable[[str], None] = print) -> xr.Dataset:
         ds, median, times = timed_solve(scene, repeats, budget)
         row = {q: float(ds[q]) for q in quantities} | {r: float(ds[r]) for r in RECORDED}
         row["solve_time"] = median
+        mesh = build_mesh(scene)
+        row["x_min"], row["nodes"] = float(mesh.x[0]), mesh.nx * mesh.ny
         part = results.setdefault(point["part"], {})
         part[(point["speed"], point["key"])] = row
         for name in quantities + ["solve_time", *RECORDED]:
             attrs[name] = dict(ds[name].attrs)
+        attrs["x_min"] = {"units": "m", "long_name": "inlet end of the domain x_min (automatic: follows the film)"}
+        attrs["nodes"] = {"units": "1", "long_name": "nodes of the mesh (the automatic inlet adds columns)"}
         log(f"{point['part']:9s} U = {point['speed']:g} m/s, {point['key']:g}: "
             + ", ".join(f"{q} = {row[q]:.6g}" for q in quantities)
             + f", converged = {int(row['converged'])}, {median:.3f} s (median of {len(times)})")
@@ -283,7 +289,7 @@ def run_study(spec: Mapping, log: Callable[[str], None] = print) -> xr.Dataset:
         dim = part
         coords[dim] = (dim, keys, {"units": units, "long_name": long_name})
         prefix = "" if part == "mesh" else f"{part}_"
-        for name in quantities + ["solve_time", *RECORDED]:
+        for name in quantities + ["solve_time", "x_min", "nodes", *RECORDED]:
             values = np.array([[rows[(s, k)][name] for k in keys] for s in speeds])
             data_vars[prefix + name] = (("speed", dim), values, attrs[name])
     out = xr.Dataset(data_vars, coords=coords)
@@ -444,12 +450,12 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
     for i, speed in enumerate(speeds):
         lines += ["", f"## U = {speed:g} m/s ({table['regime'].values[i]}, fluid carries "
                   f"{100 * table['fluid_load_fraction'].values[i, finest]:.3g} % of the load on the finest mesh)", ""]
-        lines.append("| mesh | nodes | solve time (s) | " + " | ".join(f"error {QUANTITIES[q].label}" for q in quantities) + " | converged |")
-        lines.append("|" + "---|" * (4 + len(quantities)))
+        lines.append("| mesh | nodes | x_min (mm) | solve time (s) | " + " | ".join(f"error {QUANTITIES[q].label}" for q in quantities) + " | converged |")
+        lines.append("|" + "---|" * (5 + len(quantities)))
         for k, n in enumerate(table["mesh"].values):
             errors = " | ".join(_pct(table[f"{q}_error"].values[i, k]) for q in quantities)
-            lines.append(f"| {n} × {n} | {n * n} | {table['solve_time'].values[i, k]:.3g} | {errors} | "
-                         f"{int(table['converged'].values[i, k])} |")
+            lines.append(f"| {n} × {n} | {int(table['nodes'].values[i, k])} | {1e3 * table['x_min'].values[i, k]:.3g} | "
+                         f"{table['solve_time'].values[i, k]:.3g} | {errors} | {int(table['converged'].values[i, k])} |")
         lines += ["", "| quantity | extrapolated | unit | observed order | GCI (finest mesh) | asymptotic |", "|---|---|---|---|---|---|"]
         for q in quantities:
             lines.append(f"| {QUANTITIES[q].label} | {table[f'{q}_extrapolated'].values[i]:.6g} | {table[q].attrs.get('units', '1')} | "
@@ -461,11 +467,12 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
                                          "change against the tightest")):
             if part not in table.dims:
                 continue
-            lines += ["", f"{what}:", "", f"| {part} | solve time (s) | " + " | ".join(QUANTITIES[q].label for q in quantities) + " |",
-                      "|" + "---|" * (2 + len(quantities))]
+            lines += ["", f"{what}:", "", f"| {part} | x_min (mm) | solve time (s) | " + " | ".join(QUANTITIES[q].label for q in quantities) + " |",
+                      "|" + "---|" * (3 + len(quantities))]
             for k, key in enumerate(table[part].values):
                 changes = " | ".join(_pct(table[f"{part}_{q}_change"].values[i, k]) for q in quantities)
-                lines.append(f"| {key:g} | {table[f'{part}_solve_time'].values[i, k]:.3g} | {changes} |")
+                lines.append(f"| {key:g} | {1e3 * table[f'{part}_x_min'].values[i, k]:.3g} | "
+                             f"{table[f'{part}_solve_time'].values[i, k]:.3g} | {changes} |")
     if table.attrs.get("notes"):
         lines += ["", "Notes: " + table.attrs["notes"]]
     return "\n".join(lines) + "\n"

@@ -80,6 +80,8 @@ def figure_spec(figure: str, figure_dir, overrides: Mapping | None = None) -> di
 
     ``grid: figXX`` makes the figure plot the cases of figXX: its grid keys are taken from
     figXX, itself resolved the same way (so an override of figXX reaches both figures).
+    With ``also_set`` (dotted keys) those overrides are added to figXX's ``set``: the same
+    grid with, e.g., other effects, as new cases.
     """
     return _resolve(figure, Path(figure_dir), overrides or {}, ())
 
@@ -101,6 +103,8 @@ def _resolve(figure: str, figure_dir: Path, overrides: Mapping, referrers: tuple
             raise GridError(f"{path}: 'grid: {parent}' borrows the grid of {parent}; remove {', '.join(own)}")
         borrowed = _resolve(parent, figure_dir, overrides, referrers + (figure,))
         spec.update({k: borrowed[k] for k in GRID_KEYS if k in borrowed})
+        if spec.get("also_set"):  # the borrowed grid with more overrides: its own cases
+            spec["set"] = {**(spec.get("set") or {}), **spec["also_set"]}
     return spec
 
 
@@ -257,6 +261,8 @@ def _scene(base, overrides: Mapping, where: str):
 def expand(figure: str, spec: Mapping, root=".") -> FigureGrid:
     """All cases of one figure grid, each scene validated now (a bad value fails here,
     before anything runs, with the figure, the key and the value in the message)."""
+    from .mesh import nodes_x  # the automatic inlet adds columns at high speed
+
     where = f"figure {figure}"
     if "scene" not in spec:
         raise GridError(f"{where}: no base scene (key 'scene')")
@@ -298,7 +304,7 @@ def expand(figure: str, spec: Mapping, root=".") -> FigureGrid:
     for index in np.ndindex(cases.shape):
         point = {k: v for d, i in zip(dims, index) for k, v in zip(d.keys, d.values[i])}
         scene = _scene(base, point, f"{where}, point {point}")
-        cases[index] = CaseSpec(scene.hash, scene_path, {**fixed, **point}, scene.mesh.nx * scene.mesh.ny)
+        cases[index] = CaseSpec(scene.hash, scene_path, {**fixed, **point}, nodes_x(scene) * scene.mesh.ny)
     return FigureGrid(figure, dict(spec), base, tuple(dims), cases)
 
 

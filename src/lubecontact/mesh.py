@@ -10,8 +10,19 @@ Automatic domain (``x_min``/``x_max`` = auto): the length scale
 ``s = max(2 b_H, sqrt(2 R * 10 sigma))`` covers the Hertz width b_H (Johnson, E*) and the
 inlet/outlet zone where the undeformed gap (Eq. 4) is below ten roughness heights, the
 film a fluid can build. The domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the
-fluid pressure builds, than downstream, where it cavitates. It does not depend on speed,
-so every point of a speed sweep uses the same mesh.
+fluid pressure builds, than downstream, where it cavitates.
+
+The inlet follows the film (physics.md section 17): a film h fed from an inlet that ends at
+X = x_min/sqrt(2 R h) is short of the fully flooded one by ~2.5/X^2 (lubecontact.inlet),
+and the resistance is exponential in the film. So the automatic inlet reaches at least
+INLET_FILM_LENGTHS x sqrt(2 R h_M), h_M Martin's rigid film of the scene's speed (thicker
+than the elastic film at high speed, thinner below ~1 m/s, where the rough-contact scale
+s governs anyway), by whole cells of the ``[-3.5 s, 1.5 s]`` mesh added upstream: the node
+spacing, and every node of the slow cases, stay those of ``mesh.nx`` over that domain, and
+the mesh has ``nodes_x(scene)`` >= nx nodes along x. Each speed thus has its own inlet
+(cases of a sweep differ in their inlet, not in their spacing); the inlet stops at
+MAX_DOMAIN_RADII x R (Eq. 4 needs |x| < R), where the validity flag ``inlet`` reports a
+film still short of its flooded value.
 """
 
 from __future__ import annotations
@@ -26,6 +37,8 @@ from .materials import effective_modulus
 UPSTREAM_LENGTHS = 3.5
 DOWNSTREAM_LENGTHS = 1.5
 MIN_INTERVALS_ACROSS_CONTACT = 2.0
+INLET_FILM_LENGTHS = 20.0  # automatic inlet >= this many sqrt(2 R h_M) upstream of x = 0
+MAX_DOMAIN_RADII = 0.9  # the automatic inlet never reaches beyond this fraction of R
 
 
 def hertz_half_width(scene) -> float:
@@ -47,12 +60,37 @@ def auto_length_scale(scene) -> float:
     return max(2.0 * hertz_half_width(scene), float(np.sqrt(2.0 * r * 10.0 * sigma)))
 
 
-def domain_x(scene) -> tuple[float, float]:
-    """(x_min, x_max) in m: the scene's values, or the automatic domain where they are None."""
+def film_inlet_length(scene) -> float:
+    """Inlet length (m) the film of the scene's speed needs: INLET_FILM_LENGTHS sqrt(2 R h_M)
+    (0 without a fluid)."""
+    if not scene.effects.hydrodynamics or scene.operating.speed == 0.0:
+        return 0.0
+    from .effects import martin_film
+
+    return INLET_FILM_LENGTHS * float(np.sqrt(2.0 * scene.geometry.radius * martin_film(scene)))
+
+
+def _inlet_cells(scene) -> tuple[float, float, int]:
+    """(x_min, x_max, cells added upstream) of the domain before the cells are added."""
     s = auto_length_scale(scene)
     x_min = -UPSTREAM_LENGTHS * s if scene.mesh.x_min is None else float(scene.mesh.x_min)
     x_max = DOWNSTREAM_LENGTHS * s if scene.mesh.x_max is None else float(scene.mesh.x_max)
-    return x_min, x_max
+    if scene.mesh.x_min is not None or not x_max > x_min:
+        return x_min, x_max, 0
+    spacing = (x_max - x_min) / (scene.mesh.nx - 1)
+    inlet = min(film_inlet_length(scene), MAX_DOMAIN_RADII * scene.geometry.radius)
+    return x_min, x_max, max(0, int(np.ceil((inlet + x_min) / spacing - 1e-9)))
+
+
+def nodes_x(scene) -> int:
+    """Nodes along x: mesh.nx plus the cells the automatic inlet adds for the film."""
+    return scene.mesh.nx + _inlet_cells(scene)[2]
+
+
+def domain_x(scene) -> tuple[float, float]:
+    """(x_min, x_max) in m: the scene's values, or the automatic domain where they are None."""
+    x_min, x_max, cells = _inlet_cells(scene)
+    return x_min - cells * (x_max - x_min) / (scene.mesh.nx - 1), x_max
 
 
 def mesh_problems(scene) -> list[str]:
@@ -67,10 +105,11 @@ def mesh_problems(scene) -> list[str]:
             f"mesh domain [{x_min:g}, {x_max:g}] m reaches beyond the cylinder radius "
             f"{scene.geometry.radius:g} m (Eq. 4 needs |x| < R)"
         )
-    dx = (x_max - x_min) / (scene.mesh.nx - 1)
+    dx = (x_max - x_min) / (nodes_x(scene) - 1)
     width = contact_width_estimate(scene)
     if dx * MIN_INTERVALS_ACROSS_CONTACT > width:
-        needed = int(np.ceil(MIN_INTERVALS_ACROSS_CONTACT * (x_max - x_min) / width)) + 1
+        base_min = _inlet_cells(scene)[0]  # mesh.nx spans the domain before the film's inlet cells
+        needed = int(np.ceil(MIN_INTERVALS_ACROSS_CONTACT * (x_max - base_min) / width)) + 1
         problems.append(
             f"mesh.nx = {scene.mesh.nx} is too coarse: node spacing {dx:.3g} m against an expected "
             f"contact width of {width:.3g} m; use mesh.nx >= {needed} (or a smaller domain)"
@@ -127,7 +166,7 @@ class Mesh:
 
 def build_mesh(scene) -> Mesh:
     x_min, x_max = domain_x(scene)
-    x = np.linspace(x_min, x_max, scene.mesh.nx)
+    x = np.linspace(x_min, x_max, nodes_x(scene))
     half = 0.5 * scene.geometry.length
     y = np.zeros(1) if scene.mesh.ny == 1 else np.linspace(-half, half, scene.mesh.ny)
     return Mesh(x=x, y=y, length=scene.geometry.length)

@@ -10,7 +10,10 @@ from . import __version__
 # name: (units, long_name). Every variable a case writes is listed here, so that no
 # quantity leaves the model without its unit.
 SCALARS = {
-    "contact_resistance": ("ohm", "electrical contact resistance (Eqs. 15-17, nodes in parallel)"),
+    "contact_resistance": ("ohm", "electrical contact resistance of the whole path (spots, film, cluster)"),
+    "spot_resistance": ("ohm", "resistance of the metal spots in parallel (Eqs. 15-17)"),
+    "macro_constriction_resistance": ("ohm", "Greenwood cluster constriction resistance (0 when not modelled)"),
+    "film_resistance": ("ohm", "resistance of the lubricant film in parallel over the domain (inf when insulating)"),
     "friction_coefficient": ("1", "friction coefficient (boundary friction of solid load + fluid shear) / applied force"),
     "fluid_force": ("N", "load carried by the fluid film (Eq. 5)"),
     "contact_force": ("N", "load carried by asperity contact (Eq. 11 summed over nodes)"),
@@ -19,16 +22,17 @@ SCALARS = {
     "min_film_thickness": ("m", "minimum mean-plane separation h over the mesh (may be negative)"),
     "central_film_thickness": ("m", "mean-plane separation h at x = 0, y = 0 (may be negative)"),
     "separation": ("m", "vertical position z of the cylinder (Eq. 3)"),
-    "real_contact_area": ("m2", "real area of asperity contact (Eq. 15 integrand, summed over nodes)"),
+    "real_contact_area": ("m2", "real area of asperity contact (Eq. 15 integrand, A_r/A_n <= 1, summed over nodes)"),
     "converged": ("1", "1 if the coupled solve met its tolerances, else 0"),
     "iterations": ("1", "outer (deformation) iterations of the coupled solve"),
     "force_residual": ("N", "applied force minus fluid and contact forces (Eq. 18)"),
     "deformation_residual": ("m", "last change of the deformation field in the coupling loop (max norm)"),
     "reynolds_residual": ("1", "relative residual of the discrete Reynolds complementarity problem"),
     "solve_time": ("s", "wall time of the solve, model assembly included"),
-    "open_circuit": ("1", "1 if no conducting contact is representable (resistance is +inf)"),
+    "open_circuit": ("1", "1 if contact_resistance exceeds interface.open_resistance"),
     "clamped_nodes": ("1", "nodes where A_r/A_n was clamped for the alleviation factor (Eq. 16)"),
     "speed": ("m s-1", "sliding speed U of the block"),
+    "valid": ("1", "1 if the case stays within every sub-model's range, else 0 (see the validity attribute)"),
 }
 
 FIELDS = {
@@ -39,7 +43,7 @@ FIELDS = {
     "film_content": ("1", "film content theta: fraction of the expected gap filled (effects.cavitation: jfo only)"),
 }
 
-INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes")
+INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes", "valid")
 
 
 def _attrs(table, name):

@@ -5,7 +5,8 @@ swept dimensions and ``speed``. One curve is drawn per combination of the swept
 dimensions, in one panel per x quantity: the sliding speed U (Figs. 3-11), the Stribeck
 normalisation U/F (Figs. 8-9) or the Hersey number mu U/F (Figs. 10-11).
 
-Nothing is hidden: a point that did not converge (``converged`` = 0) gets a red cross; a
+Nothing is hidden: a point outside a sub-model's range (``valid`` = 0, see
+:mod:`lubecontact.validity`) is drawn hollow; a point that did not converge (``converged`` = 0) gets a red cross; a
 point whose value is +inf (``contact_resistance`` of an open circuit) is drawn as a
 triangle on the top edge of the panel, where the value leaves the axis. A NaN is an error.
 
@@ -56,6 +57,7 @@ DISPLAY_UNITS = {
 
 NOT_CONVERGED_STYLE = {"marker": "x", "color": "tab:red", "markersize": 8, "markeredgewidth": 1.6, "linestyle": "none"}
 OPEN_STYLE = {"marker": "^", "markersize": 7, "linestyle": "none", "clip_on": False}
+OUTSIDE_STYLE = {"marker": "o", "markersize": 5, "markerfacecolor": "white", "linestyle": "none"}
 
 
 def unit_label(units: str) -> str:
@@ -88,8 +90,13 @@ def _display(ds: xr.Dataset, coord: str, unit: str | None) -> float:
     return value / size
 
 
-def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
-    """The figure of ``plot`` = {y, x: [quantities], xscale, yscale, legend} from ``ds``."""
+def render(ds: xr.Dataset, plot: Mapping, title: str = "", reference: xr.Dataset | None = None) -> Figure:
+    """The figure of ``plot`` = {y, x: [quantities], xscale, yscale, legend} from ``ds``;
+    ``kind: speed_limit`` draws :func:`render_speed_limit` instead. ``reference`` (a figure
+    Dataset with the same swept dimensions, e.g. the paper's model beside the full path) is
+    drawn dashed in the same colours, clipped to the axes ``ds`` sets."""
+    if plot.get("kind", "curves") == "speed_limit":
+        return render_speed_limit(ds, plot, title)
     y_name = plot["y"]
     y = ds[y_name]
     values = y.values
@@ -105,7 +112,7 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     axes = fig.subplots(1, len(panels), squeeze=False, sharey=True)[0]
     shape = [ds.sizes[d] for d in dims]
     colours = _colours(int(np.prod(shape)))
-    marks = {"not converged": False, "open": False}
+    marks = {"not converged": False, "open": False, "outside": False}
     for ax, x_name in zip(axes, panels):
         x_all = x_quantity(ds, x_name)
         x_all, y_all = xr.broadcast(x_all, y)
@@ -118,6 +125,10 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
             failed = curve["converged"].transpose("speed").values == 0
             label = _label(curve, swept, plot.get("legend")) if dims else None
             ax.plot(xs, np.where(infinite, np.nan, ys), marker="o", markersize=3, color=colours[k], label=label)
+            if "valid" in curve:  # hollow: outside a sub-model's range (the case's validity attribute)
+                outside = (curve["valid"].transpose("speed").values == 0) & ~infinite
+                ax.plot(xs[outside], ys[outside], markeredgecolor=colours[k], **OUTSIDE_STYLE)
+                marks["outside"] |= bool(outside.any())
             # +inf is drawn on the top edge: x in data, y in axes coordinates (1 = top)
             top = ax.get_xaxis_transform()
             if infinite.any():
@@ -130,6 +141,8 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
             marks["not converged"] |= bool(failed.any())
         ax.set_xscale(plot.get("xscale", "log"))
         ax.set_yscale(plot.get("yscale", "log"))
+        if reference is not None:
+            _draw_reference(ax, reference, x_name, y_name, dims, colours)
         ax.set_xlabel(axis_label(x_all.attrs["long_name"], x_all.attrs["units"]))
         ax.grid(True, which="major", alpha=0.3)
     axes[0].set_ylabel(axis_label(y.attrs["long_name"], y.attrs["units"]))
@@ -137,6 +150,12 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     if marks["not converged"]:
         handles.append(Line2D([], [], **NOT_CONVERGED_STYLE))
         labels.append("not converged")
+    if reference is not None:
+        handles.append(Line2D([], [], color="0.3", linestyle="--"))
+        labels.append(reference.attrs.get("reference_label", "dashed: the paper's model (spots only)"))
+    if marks["outside"]:
+        handles.append(Line2D([], [], markeredgecolor="0.3", **OUTSIDE_STYLE))
+        labels.append("outside a sub-model's range (case validity)")
     if marks["open"]:
         handles.append(Line2D([], [], color="0.3", **OPEN_STYLE))
         labels.append(f"{y_name.replace('_', ' ')} = \u221e (open circuit), at top edge")
@@ -146,6 +165,96 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     if title:
         fig.suptitle(title, fontsize="medium")
     return fig
+
+
+def _draw_reference(ax, reference: xr.Dataset, x_name: str, y_name: str, dims: Sequence[str], colours) -> None:
+    """The reference's curves, dashed; the y range reaches down to the reference's smallest
+    value but its top stays that of the data drawn solid (the paper's open contacts reach
+    1e66 ohm: above the top they are clipped)."""
+    bottom, top = ax.get_ylim()
+    finite = reference[y_name].values[np.isfinite(reference[y_name].values)]
+    if finite.size and finite.min() < bottom and (ax.get_yscale() != "log" or finite.min() > 0):
+        bottom = finite.min() / 2 if ax.get_yscale() == "log" else finite.min()
+    x_all, y_all = xr.broadcast(x_quantity(reference, x_name), reference[y_name])
+    shape = [reference.sizes[d] for d in dims]
+    for k, index in enumerate(np.ndindex(*shape)):
+        at = dict(zip(dims, index))
+        ys = y_all.isel(at).transpose("speed").values
+        ax.plot(x_all.isel(at).transpose("speed").values, np.where(np.isfinite(ys), ys, np.nan),
+                linestyle="--", linewidth=1.0, color=colours[k])
+    ax.set_ylim(bottom, top)
+
+
+def highest_closed_speed(ds: xr.Dataset) -> xr.DataArray:
+    """Per swept combination: the highest speed U* (m/s) at which contact_resistance is still
+    below the scene's interface.open_resistance, from the first opening along speed,
+    interpolated in log R against log U between the last closed and the first open speed.
+    NaN where the contact is open at the lowest speed; +inf where it never opens."""
+    import yaml
+
+    threshold = yaml.safe_load(str(ds["scene"].values.flat[0]))["interface"]["open_resistance"]
+    resistance = ds["contact_resistance"].transpose(..., "speed")
+    speeds = ds["speed"].values
+    out = np.full(resistance.shape[:-1], np.nan)
+    for index in np.ndindex(out.shape):
+        r = resistance.values[index]
+        opened = np.flatnonzero(~(r <= threshold))
+        if opened.size == 0:
+            out[index] = np.inf
+        elif opened[0] > 0:
+            i = opened[0]
+            lo, hi = np.log(r[i - 1]), np.log(min(r[i], np.finfo(float).max))
+            t = (np.log(threshold) - lo) / (hi - lo)
+            out[index] = float(np.exp(np.log(speeds[i - 1]) + t * (np.log(speeds[i]) - np.log(speeds[i - 1]))))
+    dims = [d for d in resistance.dims if d != "speed"]
+    return xr.DataArray(out, dims=dims, coords={d: ds[d] for d in dims},
+                        attrs={"units": "m s-1", "long_name": "highest sliding speed with the contact closed",
+                               "open_resistance": threshold})
+
+
+def render_speed_limit(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
+    """A map of :func:`highest_closed_speed` over the two swept dimensions (``plot['map']``:
+    [x dimension, y dimension]), log colour scale, each cell labelled with its value."""
+    from matplotlib.colors import LogNorm
+
+    limit = highest_closed_speed(ds)
+    x_dim, y_dim = plot.get("map") or [d for d in limit.dims]
+    limit = limit.transpose(y_dim, x_dim)
+    speeds = ds["speed"].values
+    shown = np.clip(np.nan_to_num(limit.values, nan=speeds.min(), posinf=speeds.max()), speeds.min(), speeds.max())
+    fig = Figure(figsize=(6.4, 4.8), layout="constrained")
+    ax = fig.subplots()
+    xs, ys = np.arange(limit.sizes[x_dim]), np.arange(limit.sizes[y_dim])
+    mesh = ax.pcolormesh(xs, ys, shown, norm=LogNorm(speeds.min(), speeds.max()), cmap="viridis", shading="nearest")
+    for j in ys:
+        for i in xs:
+            value = limit.values[j, i]
+            text = (f"> {speeds.max():g}" if value == np.inf else f"< {speeds.min():g}" if np.isnan(value)
+                    else f"{value:.2g}")
+            ax.text(i, j, text, ha="center", va="center", fontsize="small",
+                    color="white" if shown[j, i] < np.sqrt(speeds.min() * speeds.max()) else "black")
+    for axis, dim, ticks in ((ax.xaxis, x_dim, xs), (ax.yaxis, y_dim, ys)):
+        coord = ds[dim]
+        axis.set_ticks(ticks, [f"{v:g}" for v in coord.values / _unit_size(plot, dim, coord)])
+    units = plot.get("units") or {}
+    ax.set_xlabel(f"{ds[x_dim].attrs.get('long_name', x_dim).split(' (')[0]} ({units.get(x_dim, unit_label(ds[x_dim].attrs.get('units', '')))})")
+    ax.set_ylabel(f"{ds[y_dim].attrs.get('long_name', y_dim).split(' (')[0]} ({units.get(y_dim, unit_label(ds[y_dim].attrs.get('units', '')))})")
+    bar = fig.colorbar(mesh, ax=ax)
+    bar.set_label(f"highest sliding speed with R < {limit.attrs['open_resistance']:g} Ω (m/s)")
+    if title:
+        fig.suptitle(title, fontsize="medium")
+    return fig
+
+
+def _unit_size(plot: Mapping, dim: str, coord: xr.DataArray) -> float:
+    """Size of the display unit of a map axis (``plot['units'][dim]``) in the coordinate's units."""
+    unit = (plot.get("units") or {}).get(dim)
+    if unit is None:
+        return 1.0
+    base, size = DISPLAY_UNITS[unit]
+    if coord.attrs.get("units") != base:
+        raise ValueError(f"display unit {unit!r} does not fit {dim} in {coord.attrs.get('units')!r}")
+    return size
 
 
 def _colours(n: int) -> list:

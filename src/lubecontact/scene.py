@@ -323,12 +323,26 @@ class Roughness(_Section):
 @dataclass(frozen=True)
 class Lubricant(_Section):
     viscosity: float = _field(0.1, _positive("Pa s"), "dynamic viscosity mu (isoviscous)")
+    # Mineral oils conduct 0.4-2.1 pS/m (Shell Vitrea, Harvey et al., as reported in
+    # "Electrical conductivity of motor oil", qsstudy.com): 1 pS/m is 1e12 ohm m.
+    resistivity: float = _field(
+        1.0e12, _positive("Ohm m"), "electrical resistivity of the lubricant rho_f (effects.film_conduction)"
+    )
 
 
 @dataclass(frozen=True)
 class Interface(_Section):
     boundary_friction: float = _field(
         0.1, _nonnegative("1"), "friction coefficient of solid contact mu_b (not in the paper)"
+    )
+    # Hydrocarbon chains: 1.42 eV measured through alkanethiol monolayers (Wang, Lee & Reed,
+    # Phys. Rev. B 68 (2003) 035416).
+    barrier_height: float = _field(
+        1.4, _positive("eV"), "tunnelling barrier height phi of the film (effects.tunnelling, Simmons 1963)"
+    )
+    # Connector discontinuity tests count an event above 10 ohm (EIA-364-46 / -87 practice).
+    open_resistance: float = _field(
+        10.0, _positive("ohm"), "contact resistance above which the contact counts as open"
     )
 
 
@@ -343,7 +357,8 @@ class Effects(_Section):
     """Physical effects to simulate (DESIGN.md "Effects"); ``effects: auto`` turns all on
     and leaves ``auto`` set, so the canonical form keeps saying ``auto``. Setting any one
     flag (``effects.hydrodynamics=false``) makes the effects explicit: auto ends, the
-    other flags stay on."""
+    other flags stay on. The electrical-path effects (macro_constriction,
+    film_conduction, tunnelling) go beyond the paper: off by default and under auto."""
 
     hydrodynamics: bool = _field(True, _Flag(), "modified Reynolds fluid pressure (Eq. 1)")
     flow_factors: bool = _field(True, _Flag(), "Patir-Cheng flow factors (Eq. 2)")
@@ -355,6 +370,9 @@ class Effects(_Section):
     plasticity: bool = _field(True, _Flag(), "Jackson-Green elastic-plastic asperities")
     elastic_deformation: bool = _field(True, _Flag(), "macro deformation by influence coefficients")
     alleviation: bool = _field(True, _Flag(), "alleviation factor Psi (Eq. 16)")
+    macro_constriction: bool = _field(False, _Flag(), "Greenwood cluster constriction in series (not in the paper)")
+    film_conduction: bool = _field(False, _Flag(), "ohmic conduction of the lubricant film (not in the paper)")
+    tunnelling: bool = _field(False, _Flag(), "Simmons tunnelling through thin films (not in the paper)")
     auto: bool = False
 
     def to_dict(self):
@@ -486,7 +504,7 @@ def _apply_overrides(raw, overrides: Mapping, problems: list[str]):
             data[section] = {**current, **value} if both else value
             continue
         if section == "effects" and current == AUTO:  # an explicit flag ends auto
-            current = {k: True for k in Effects.keys()}
+            current = {f.name: f.default for f in fields(Effects) if "rule" in f.metadata}
         if current is None:
             current = {}
         if not isinstance(current, Mapping):

@@ -106,7 +106,10 @@ class Model:
             "asperity_contact": self.contact is not None,
             "plasticity": self.contact is not None and e.plasticity,
             "elastic_deformation": self.deformation is not None,
-            "alleviation": self.contact is not None and e.alleviation,
+            "alleviation": self.contact is not None and e.alleviation and not e.macro_constriction,
+            "macro_constriction": e.macro_constriction,
+            "film_conduction": e.film_conduction,
+            "tunnelling": e.tunnelling,
         }
 
 
@@ -494,7 +497,8 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     ``initial`` ({"z": float, "delta": array}) warm-starts the coupling loop (a sweep's
     continuation); a cold start must give the same answer within tolerance.
     """
-    from .electrical import contact_resistance
+    from .electrical import electrical_path
+    from .validity import assess
     from .friction import fluid_shear_force, friction_coefficient
     from .output import case_dataset
 
@@ -515,15 +519,15 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         notes.append("NOT CONVERGED: " + diag["failure"])
     mesh = model.mesh
     area = mesh.nodal_area
-    if model.contact is not None:
-        area_fraction = model.contact.area_fraction(state.film)
-        resistance, clamped = contact_resistance(
-            model.contact.log_conductance(state.film), area_fraction, area, scene.effects.alleviation
-        )
-        real_area = float(np.sum(area_fraction * area))
+    path = electrical_path(scene, mesh, model.contact, state.film)
+    notes.extend(path.notes)
+    if model.contact is not None:  # a node with A_r/A_n > 1 is fully in contact (validity: area_capped)
+        real_area = float(np.sum(np.minimum(model.contact.area_fraction(state.film), 1.0) * area))
     else:
-        resistance, clamped, real_area = np.inf, 0, 0.0
-        notes.append("asperity_contact off: no conducting path (open circuit by construction)")
+        real_area = 0.0
+        notes.append("asperity_contact off: no metallic path")
+    validity = assess(scene, mesh, model.contact, state, model.hydrodynamic)
+    notes.extend(f"validity {flag}: {note}" for flag, note in validity.items())
     shear = 0.0
     if model.hydrodynamic:
         shear = fluid_shear_force(
@@ -535,7 +539,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
     force = scene.operating.force
     carried = state.total_force
     scalars = {
-        "contact_resistance": resistance,
+        **path.scalars(scene.interface.open_resistance),
         "friction_coefficient": friction_coefficient(scene.interface.boundary_friction, state.contact_force, shear, force),
         "fluid_force": state.fluid_force,
         "contact_force": state.contact_force,
@@ -551,9 +555,8 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         "deformation_residual": diag["deformation_residual"],
         "reynolds_residual": diag["reynolds_residual"],
         "solve_time": time.perf_counter() - start,
-        "open_circuit": int(not np.isfinite(resistance)),
-        "clamped_nodes": int(clamped),
         "speed": scene.operating.speed,
+        "valid": int(not validity),
     }
     field_data = None
     if fields:
@@ -566,6 +569,7 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         if getattr(state.reynolds, "content", None) is not None:  # effects.cavitation: jfo
             field_data["film_content"] = state.reynolds.content
     ds = case_dataset(requested, scalars, field_data, mesh, model.effects_run, "; ".join(notes))
+    ds.attrs["validity"] = ",".join(validity) or "ok"
     if return_state:
         return ds, state
     return ds

@@ -18,6 +18,8 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
     """
     from tqdm.auto import tqdm
 
+    from .mesh import build_mesh
+    from .reynolds import _interpolate
     from .solver import solve
 
     speeds = np.asarray(sorted(float(s) for s in speeds))
@@ -26,12 +28,15 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
     if progress is None:
         progress = sys.stderr.isatty()
     cases = []
-    initial = None
+    initial = previous_mesh = None
     for speed in tqdm(speeds, desc="speeds", unit="pt", disable=not progress):
         point = scene.replace({"operating.speed": float(speed)})
+        mesh = build_mesh(point)
+        if initial is not None and previous_mesh.shape != mesh.shape:  # the inlet grew with the film
+            initial = {"z": initial["z"], "delta": _interpolate(initial["delta"], previous_mesh, mesh)}
         ds, state = solve(point, fields=fields, initial=initial, return_state=True)
         if warm_start and ds["converged"].item() == 1:
-            initial = {"z": state.z, "delta": state.delta}
+            initial, previous_mesh = {"z": state.z, "delta": state.delta}, mesh
             if state.reynolds is not None:
                 initial["cavitated"] = state.reynolds.cavitated
         cases.append(ds.drop_vars("speed"))

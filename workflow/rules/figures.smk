@@ -7,6 +7,8 @@ rule plot:
     input:
         data="results/data/{figure}.nc",
         code="src/lubecontact/plotting.py",
+        # compare: figXX draws that figure's data dashed on the same axes (figNNp: the paper's)
+        reference=lambda w: [f"results/data/{SPECS[w.figure]['compare']}.nc"] if "compare" in SPECS[w.figure] else [],
     output:
         png=report(
             "results/figures/{figure}.png",

@@ -12,5 +12,6 @@ from lubecontact import plotting
 with open(snakemake.log[0], "w") as log:
     sys.stdout = sys.stderr = log
     ds = xr.load_dataset(snakemake.input.data)
-    fig = plotting.render(ds, snakemake.params.plot, snakemake.params.title)
+    reference = xr.load_dataset(snakemake.input.reference[0]) if snakemake.input.reference else None
+    fig = plotting.render(ds, snakemake.params.plot, snakemake.params.title, reference=reference)
     plotting.save(fig, [snakemake.output.png, snakemake.output.pdf])

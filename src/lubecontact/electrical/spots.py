@@ -1,4 +1,7 @@
-"""Contact resistance from the spot conductances: Holm, alleviation, nodes in parallel (Eqs. 15-17).
+"""The paper's spot resistance: Holm spots, Cooper's alleviation, nodes in parallel (Eqs. 15-17).
+
+This is the whole electrical model of the paper (physics.md section 8) and the first term
+of the full path (:mod:`lubecontact.electrical.path`).
 
 - Holm: one circular spot of radius a between half-spaces of resistivities rho1, rho2 has
   resistance (rho1 + rho2)/(4a) (= rho/(2a) for one material); per nominal area the spots

@@ -1,0 +1,67 @@
+"""Figures of the full electrical path (lubecontact.plotting): the paper's curves dashed on
+the full path's axes, hollow points outside a sub-model's range, and the design map of the
+highest closed speed against a resistance law whose crossing is known exactly."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from lubecontact import load_scene, plotting
+
+SPEEDS = [1e-2, 1e-1, 1.0, 10.0]
+
+
+def dataset(resistance, dims, coords, valid=None):
+    scene = load_scene({}).canonical_yaml()  # interface.open_resistance = 10 ohm
+    resistance = np.asarray(resistance, dtype=float)
+    return xr.Dataset(
+        {
+            "contact_resistance": (dims, resistance, {"units": "ohm", "long_name": "contact resistance"}),
+            "converged": (dims, np.ones(resistance.shape, np.int32), {"units": "1", "long_name": "converged"}),
+            "valid": (dims, np.ones(resistance.shape, np.int32) if valid is None else valid, {"units": "1", "long_name": "valid"}),
+            "case_id": (dims, np.full(resistance.shape, "c")),
+            "scene": (dims, np.full(resistance.shape, scene, dtype=object).astype(str)),
+        },
+        coords={"force": ((), 5.0, {"units": "N", "long_name": "force"}), "viscosity": ((), 0.1, {"units": "Pa s", "long_name": "mu"}),
+                **coords, "speed": ("speed", SPEEDS, {"units": "m s-1", "long_name": "sliding speed U"})},
+    )
+
+
+def test_highest_closed_speed_is_the_crossing_of_a_power_law():
+    """R = 4 U^2 ohm crosses 10 ohm at U = sqrt(2.5) = 1.581 m/s (exact in log-log
+    interpolation); one curve never opens (> 10 m/s: +inf), one is open from the start (NaN)."""
+    force = ("force", [1.0, 10.0, 30.0], {"units": "N", "long_name": "normal force"})
+    u = np.array(SPEEDS)
+    r = np.stack([4 * u**2, np.full(4, 1e-3), np.full(4, 1e3)])
+    limit = plotting.highest_closed_speed(dataset(r, ("force", "speed"), {"force": force}))
+    assert limit.values[0] == pytest.approx(np.sqrt(2.5), rel=1e-12)
+    assert limit.values[1] == np.inf and np.isnan(limit.values[2])
+    assert limit.attrs["units"] == "m s-1" and limit.attrs["open_resistance"] == 10.0
+
+
+def test_speed_limit_map_and_reference_curves():
+    coords = {"force": ("force", [1.0, 10.0], {"units": "N", "long_name": "normal force F"}),
+              "radius": ("radius", [2.5e-3, 1e-2], {"units": "m", "long_name": "cylinder radius R"})}
+    u = np.array(SPEEDS)
+    r = np.array([[4 * u**2, 2 * u**2], [np.full(4, 1e-3), u]])
+    fig = plotting.render(dataset(r, ("force", "radius", "speed"), coords),
+                          {"kind": "speed_limit", "y": "contact_resistance", "x": ["speed"], "map": ["force", "radius"],
+                           "units": {"radius": "mm"}}, "map")
+    ax = fig.axes[0]
+    labels = sorted(t.get_text() for t in ax.texts)
+    assert labels == sorted([f"{np.sqrt(2.5):.2g}", f"{np.sqrt(5.0):.2g}", "> 10", "> 10"])  # R = u < 10 up to 10 m/s
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["2.5", "10"]
+
+    sigma = {"sigma": ("sigma", [0.5e-6, 1e-6], {"units": "m", "long_name": "sigma"})}
+    full = dataset([[2e-4, 2e-4, 3e-4, 1e3], [2e-4, 2e-4, 2e-4, 1e-3]], ("sigma", "speed"), sigma,
+                   valid=np.array([[0, 0, 1, 1], [0, 1, 1, 1]], np.int32))
+    paper = dataset([[2e-6, 2e-6, 1e-3, 1e66], [2e-6, 2e-6, 2e-6, 1e-4]], ("sigma", "speed"), sigma)
+    fig = plotting.render(full, {"y": "contact_resistance", "x": ["speed"]}, reference=paper)
+    ax = fig.axes[0]
+    bottom, top = ax.get_ylim()
+    assert top < 1e5  # the paper's 1e66 ohm does not set the axis
+    dashed = [line for line in ax.get_lines() if line.get_linestyle() == "--"]
+    assert len(dashed) == 2 and np.nanmax(dashed[0].get_ydata()) == 1e66  # drawn, clipped by the axes
+    hollow = [line for line in ax.get_lines() if line.get_markerfacecolor() == "white"]
+    assert sum(len(line.get_xdata()) for line in hollow) == 3  # the three valid = 0 points
+    assert "paper's model" in " ".join(t.get_text() for t in ax.get_legend().get_texts())
