@@ -33,6 +33,17 @@ import numpy as np
 FP_ZERO = np.log(1.40) / 0.66
 
 
+# For z = H/3 > 1 the two terms of phi_f's bracket grow like z^6 and cancel to ~1/z: at
+# H = 300 the closed form is 1 % off in double precision, at H = 3000 it is 5e4 (thick films
+# at the inlet of a long domain). From z = SERIES_FROM_Z on phi_f is summed from its
+# expansion in w = 1/z, phi_f = sum_k 105 w^(2k) / ((2k+1)(2k+3)(2k+5)(2k+7)) (derived by
+# expanding ln((z+1)/(z-1)) = 2 sum w^(2k+1)/(2k+1); the negative powers cancel exactly),
+# 24 terms: truncation below w^48/k^4 ~ 1e-31 at z = 4, where both forms agree to 1e-12.
+SERIES_FROM_Z = 4.0
+_K = np.arange(24.0)
+_SERIES = 105.0 / ((2 * _K + 1) * (2 * _K + 3) * (2 * _K + 5) * (2 * _K + 7))
+
+
 def _couette_bracket(z: np.ndarray) -> np.ndarray:
     """(35/96) x the bracket of phi_f for |z| <= 1 (z = H/3): sigma phi_f/h there."""
     zp = np.clip(z, -1.0 + 1e-12, 1.0)
@@ -51,10 +62,12 @@ def couette_shear_factor(H) -> np.ndarray:
     H = np.asarray(H, dtype=float)
     z = H / 3.0
     inner = np.maximum(_couette_bracket(np.minimum(z, 1.0)), 0.0)  # rounding below 0 near z = -1
-    zo = np.maximum(z, 1.0 + 1e-12)
+    zo = np.clip(z, 1.0 + 1e-12, SERIES_FROM_Z)
     outer = (35.0 / 96.0) * ((1.0 - zo * zo) ** 3 * np.log((zo + 1.0) / (zo - 1.0))
                              + (zo / 15.0) * (66.0 + zo * zo * (30.0 * zo * zo - 80.0)))
-    return np.where(H <= -3.0, 0.0, np.where(z <= 1.0, inner, outer))
+    zs = np.maximum(z, SERIES_FROM_Z)
+    far = np.polynomial.polynomial.polyval(1.0 / (zs * zs), _SERIES) / (3.0 * zs)
+    return np.where(H <= -3.0, 0.0, np.where(z <= 1.0, inner, np.where(z < SERIES_FROM_Z, outer, far)))
 
 
 def couette_stress_factor(H) -> np.ndarray:
