@@ -5,6 +5,7 @@
 #   snakemake --report results/report.html                                 # HTML report
 #
 # A root Snakefile hides workflow/profiles/default: pass --workflow-profile as above.
+# config/test.yaml writes to results/test/ (config key `results`).
 # Layout of results/ and what reruns when: results/README.md.
 
 from snakemake.utils import min_version
@@ -15,11 +16,16 @@ min_version("9.0")
 configfile: "config/config.yaml"
 
 
+# the report's landing page: what this run is (workflow/report/workflow.rst)
+report: "workflow/report/workflow.rst"
+
+
 include: "workflow/rules/cases.smk"
 include: "workflow/rules/solve.smk"
 include: "workflow/rules/collect.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/accuracy.smk"
+include: "workflow/rules/report.smk"
 
 
 localrules:
@@ -30,9 +36,16 @@ localrules:
     accuracy_figure,
 
 
+# Every product is a target, intermediates included: a case or data file deleted (or moved
+# aside as incomplete, cases.smk) is rebuilt by a plain rerun, and what depends on it
+# follows (its input is then newer).
 rule all:
     input:
-        expand("results/figures/{figure}.{ext}", figure=FIGURES, ext=["png", "pdf"]),
-        expand("results/figures/accuracy_cost.{ext}", ext=["png", "pdf"]),
-        "results/data/accuracy_cost.md",
+        expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=FIGURES, ext=["png", "pdf"]),
+        expand(f"{RESULTS}/figures/accuracy_cost.{{ext}}", ext=["png", "pdf"]),
+        f"{RESULTS}/data/accuracy_cost.md",
+        expand(f"{RESULTS}/data/{{figure}}.nc", figure=FIGURES),
+        f"{RESULTS}/data/accuracy_cost.nc",
+        f"{RESULTS}/accuracy/study.nc",
+        ALL_CASES.values(),
     default_target: True

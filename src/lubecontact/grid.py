@@ -319,14 +319,15 @@ def plan_chunks(grids: Iterable[FigureGrid], cases_per_job: int | None = None) -
 
     A case belongs to the first grid (in the order given) that has it. Each curve's cases
     that are its own, in speed order, form one chunk (``cases_per_job`` None) or chunks of
-    at most ``cases_per_job``. A chunk's name changes only when its members do.
+    at most ``cases_per_job``. A chunk's name, ``<figure>_<swept values>_<digest>``, says
+    which curve it solves and changes only when its members do.
     """
     if cases_per_job is not None and cases_per_job < 1:
         raise GridError(f"cases_per_job must be >= 1 or 'curve', got {cases_per_job}")
     claimed: set[str] = set()
     chunks = []
     for grid in grids:
-        for _, curve in grid.curves():
+        for index, curve in grid.curves():
             own = []
             for case in curve:
                 if case.id not in claimed:
@@ -336,8 +337,18 @@ def plan_chunks(grids: Iterable[FigureGrid], cases_per_job: int | None = None) -
             for start in range(0, len(own), size):
                 members = tuple(own[start : start + size])
                 digest = hashlib.sha256("\n".join(c.id for c in members).encode()).hexdigest()[:12]
-                chunks.append(Chunk(f"{grid.figure}_{digest}", members))
+                chunks.append(Chunk(f"{grid.figure}_{_curve_label(grid, index)}{digest}", members))
     return chunks
+
+
+def _curve_label(grid, index) -> str:
+    """'sigma_5e_07_' for the curve at ``index`` of the swept dims: readable rule and log names."""
+    words = [
+        f"{dim.name}_" + "_".join(f"{v:g}" if isinstance(v, float) else str(v) for v in dim.values[i])
+        for dim, i in zip(grid.dims[:-1], index)
+    ]
+    label = re.sub(r"[^0-9A-Za-z]+", "_", "_".join(words)).strip("_")
+    return f"{label}_" if label else ""
 
 
 # --- which code decides a case -----------------------------------------------------------------
