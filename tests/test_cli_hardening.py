@@ -181,3 +181,26 @@ def test_internal_error_is_one_line_with_a_saved_traceback(tmp_path, capsys, mon
     saved = next(tmp_path.glob("lubecontact-crash-*.txt")).read_text()
     assert "Traceback" in saved and "simulated bug" in saved
     assert not (tmp_path / "x.nc").exists()
+
+
+def test_interrupt_and_a_failed_write_are_one_line_each(tmp_path, capsys, monkeypatch):
+    import errno
+
+    import lubecontact.output
+    import lubecontact.solver
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(lubecontact.solver, "solve", interrupted)
+    code, _, err = run(capsys, "solve", SCENE, *TINY, "--out", str(tmp_path / "x.nc"))
+    assert code == cli.EXIT_INTERRUPTED and err == "lubecontact: interrupted; nothing was written\n"
+    monkeypatch.undo()
+
+    def disk_full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(lubecontact.output, "write_case", disk_full)
+    code, _, err = run(capsys, "solve", SCENE, *TINY, "--out", str(tmp_path / "x.nc"))
+    assert code == cli.EXIT_NOT_CONVERGED and err.count("\n") == 1 and "No space left on device" in err
+    assert not (tmp_path / "x.nc").exists()
