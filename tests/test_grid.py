@@ -275,3 +275,18 @@ def test_collect_refuses_a_file_of_another_scene_or_speed():
         grid.collect(g.layout(), wrong_hash)
     with pytest.raises(grid.GridError, match="speed"):
         grid.collect(g.layout(), lambda case_id: fake_case(cases[case_id], 0.5e-6, 123.0))
+
+
+def test_chunk_names_are_readable_and_short_enough_for_slurm_bundles():
+    """Snakemake names a bundle's job script after its first five rule names (+ uuid, 36,
+    and '.sh.waitforfilesfile.txt'): solve_<chunk> must stay <= 33 characters (grid.py)."""
+    import yaml
+
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
+    chunks = grid.plan_chunks(grid.expand_all(specs, ROOT).values())
+    names = [f"solve_{c.name}" for c in chunks]
+    assert max(map(len, names)) <= 33 and len(set(names)) == len(names)
+    script = "snakejob.solve_" + "_".join(sorted(names)[-5:] + ["..."]) + "." + "u" * 36 + ".sh.waitforfilesfile.txt"
+    assert len(script) <= 255
+    assert "solve_fig04_sigma_2_5e_07_" in " ".join(names) and "solve_fig03_mesh_201_201_" in " ".join(names)

@@ -240,7 +240,7 @@ def test_report_landing_page_says_what_the_run_is(built):
 
     assert f"lubecontact version: {lubecontact.__version__}" in html and "git commit of the workflow tree" in html
     assert "roughness.sigma = 5e-07, 1e-06" in html and "config/scenes/table1.yaml" in html
-    assert re.search(r"solve_fig04_sigma_1e_06_[0-9a-f]{12}", html)  # readable rule names
+    assert re.search(r"solve_fig04_sigma_1e_06_[0-9a-f]{6}", html)  # readable rule names
 
 
 @pytest.mark.slow

@@ -336,18 +336,27 @@ def plan_chunks(grids: Iterable[FigureGrid], cases_per_job: int | None = None) -
             size = cases_per_job or len(own) or 1
             for start in range(0, len(own), size):
                 members = tuple(own[start : start + size])
-                digest = hashlib.sha256("\n".join(c.id for c in members).encode()).hexdigest()[:12]
+                digest = hashlib.sha256("\n".join(c.id for c in members).encode()).hexdigest()[:CHUNK_DIGEST]
                 chunks.append(Chunk(f"{grid.figure}_{_curve_label(grid, index)}{digest}", members))
     return chunks
 
 
+# Chunk names become rule names (solve_<name>), and Snakemake names a SLURM bundle's job
+# script after its first five rule names plus a uuid: a file name, at most 255 bytes. With
+# names of at most 33 characters (solve_ 6 + figNN_ 6 + label 14 + _ 1 + digest 6) that
+# file name stays below 250 bytes; longer names made every bundle fail to submit.
+CHUNK_LABEL = 14
+CHUNK_DIGEST = 6
+
+
 def _curve_label(grid, index) -> str:
-    """'sigma_5e_07_' for the curve at ``index`` of the swept dims: readable rule and log names."""
+    """'sigma_5e_07_' for the curve at ``index`` of the swept dims (at most CHUNK_LABEL
+    characters before the '_'): readable rule and log names."""
     words = [
         f"{dim.name}_" + "_".join(f"{v:g}" if isinstance(v, float) else str(v) for v in dim.values[i])
         for dim, i in zip(grid.dims[:-1], index)
     ]
-    label = re.sub(r"[^0-9A-Za-z]+", "_", "_".join(words)).strip("_")
+    label = re.sub(r"[^0-9A-Za-z]+", "_", "_".join(words))[:CHUNK_LABEL].strip("_")
     return f"{label}_" if label else ""
 
 
