@@ -5,6 +5,7 @@
 #   snakemake --report results/report.html                                 # HTML report
 #
 # A root Snakefile hides workflow/profiles/default: pass --workflow-profile as above.
+# config/test.yaml writes to results/test/ (config key `results`).
 # Layout of results/ and what reruns when: results/README.md.
 
 from snakemake.utils import min_version
@@ -15,12 +16,17 @@ min_version("9.0")
 configfile: "config/config.yaml"
 
 
+# the report's landing page: what this run is (workflow/report/workflow.rst)
+report: "workflow/report/workflow.rst"
+
+
 include: "workflow/rules/cases.smk"
 include: "workflow/rules/solve.smk"
 include: "workflow/rules/collect.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/surfaces.smk"
+include: "workflow/rules/report.smk"
 
 
 localrules:
@@ -32,10 +38,17 @@ localrules:
     surfaces_psd,
 
 
+# Every product is a target, intermediates included: a case or data file deleted (or moved
+# aside as incomplete, cases.smk) is rebuilt by a plain rerun, and what depends on it
+# follows (its input is then newer).
 rule all:
     input:
-        expand("results/figures/{figure}.{ext}", figure=FIGURES, ext=["png", "pdf"]),
-        expand("results/figures/accuracy_cost.{ext}", ext=["png", "pdf"]),
-        "results/data/accuracy_cost.md",
-        expand("results/figures/surfaces_psd.{ext}", ext=["png", "pdf"]) if SURFACE_FILES else [],
+        expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=FIGURES, ext=["png", "pdf"]),
+        expand(f"{RESULTS}/figures/accuracy_cost.{{ext}}", ext=["png", "pdf"]),
+        f"{RESULTS}/data/accuracy_cost.md",
+        expand(f"{RESULTS}/data/{{figure}}.nc", figure=FIGURES),
+        f"{RESULTS}/data/accuracy_cost.nc",
+        f"{RESULTS}/accuracy/study.nc",
+        ALL_CASES.values(),
+        expand(f"{RESULTS}/figures/surfaces_psd.{{ext}}", ext=["png", "pdf"]) if SURFACE_FILES else [],
     default_target: True

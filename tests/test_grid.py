@@ -306,3 +306,18 @@ def test_solver_sources_take_a_subpackage_whole_and_follow_its_imports(tmp_path)
         (pkg / name).write_text(text)
     found = {str(p.relative_to(pkg)) for p in grid.solver_sources(pkg)}
     assert found == {"__init__.py", "solver.py", "scene.py", "sub/__init__.py", "sub/a.py", "sub/b.py", "helper.py"}
+
+
+def test_chunk_names_are_readable_and_short_enough_for_slurm_bundles():
+    """Snakemake names a bundle's job script after its first five rule names (+ uuid, 36,
+    and '.sh.waitforfilesfile.txt'): solve_<chunk> must stay <= 33 characters (grid.py)."""
+    import yaml
+
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
+    chunks = grid.plan_chunks(grid.expand_all(specs, ROOT).values())
+    names = [f"solve_{c.name}" for c in chunks]
+    assert max(map(len, names)) <= 33 and len(set(names)) == len(names)
+    script = "snakejob.solve_" + "_".join(sorted(names)[-5:] + ["..."]) + "." + "u" * 36 + ".sh.waitforfilesfile.txt"
+    assert len(script) <= 255
+    assert "solve_fig04_sigma_2_5e_07_" in " ".join(names) and "solve_fig03_mesh_201_201_" in " ".join(names)

@@ -295,6 +295,8 @@ def test_files(tmp_path):
     assert "sigma given twice" in _error(twice)
     empty = tmp_path / "empty.yaml"
     empty.write_text("# only a comment\n")
+    assert "empty" in _error(empty) and "{}" in _error(empty)  # issue 13: Table 1 is asked for explicitly
+    empty.write_text("{}  # Table 1\n")
     assert load_scene(empty) == load_scene({})
     listing = tmp_path / "list.yaml"
     listing.write_text("- 1\n- 2\n")
@@ -302,7 +304,7 @@ def test_files(tmp_path):
 
 
 def test_parse_override():
-    assert parse_override("roughness.sigma=1e-6") == ("roughness.sigma", "1e-6")
+    assert parse_override("roughness.sigma=1e-6") == ("roughness.sigma", 1e-6)  # decimal numbers as YAML 1.2 reads them
     assert parse_override(" effects.cavitation = false") == ("effects.cavitation", False)
     assert parse_override("mesh.x_min=-1.0e-3") == ("mesh.x_min", -1e-3)
     assert parse_override("effects=auto") == ("effects", "auto")

@@ -146,7 +146,7 @@ def built(tmp_path_factory):
 @pytest.mark.slow
 def test_data_files_have_dimensions_units_and_provenance(built):
     for figure in FIGURES:
-        ds = xr.load_dataset(built / "results" / "data" / f"{figure}.nc")
+        ds = xr.load_dataset(built / "results" / "test" / "data" / f"{figure}.nc")
         assert dict(ds.sizes) == {SWEPT[figure]: 2, "speed": 4}, figure
         np.testing.assert_allclose(ds["speed"].values, [1e-3, 0.1, 1.0, 10.0])
         for name, var in ds.variables.items():
@@ -157,24 +157,24 @@ def test_data_files_have_dimensions_units_and_provenance(built):
         assert ds.attrs["lubecontact_version"] and "roughness" in ds.attrs["base_scene"]
         assert set(ds["converged"].values.ravel()) <= {0, 1}
         for case_id in ds["case_id"].values.ravel():
-            assert (built / "results" / "cases" / f"{case_id}.nc").is_file()
-    fig03 = xr.load_dataset(built / "results" / "data" / "fig03.nc")
+            assert (built / "results" / "test" / "cases" / f"{case_id}.nc").is_file()
+    fig03 = xr.load_dataset(built / "results" / "test" / "data" / "fig03.nc")
     assert fig03["nx"].values.tolist() == [15, 21] and fig03["ny"].values.tolist() == [11, 15]
     # one baseline case, one file: fig04 (sigma = 0.5 um) and fig08 (F = 5 N) share it
-    fig04 = xr.load_dataset(built / "results" / "data" / "fig04.nc")
-    fig08 = xr.load_dataset(built / "results" / "data" / "fig08.nc")
+    fig04 = xr.load_dataset(built / "results" / "test" / "data" / "fig04.nc")
+    fig08 = xr.load_dataset(built / "results" / "test" / "data" / "fig08.nc")
     assert (fig04["case_id"].sel(sigma=0.5e-6).values == fig08["case_id"].sel(force=5.0).values).all()
 
 
 @pytest.mark.slow
 def test_physical_trends(built):
     for figure in ("fig03", "fig04", "fig06", "fig08", "fig10"):
-        ds = xr.load_dataset(built / "results" / "data" / f"{figure}.nc")
+        ds = xr.load_dataset(built / "results" / "test" / "data" / f"{figure}.nc")
         resistance = ds["contact_resistance"].transpose(..., "speed").values
         assert (np.diff(resistance, axis=-1) > 0).all(), f"{figure}: resistance must rise with speed"
         slowest = ds["friction_coefficient"].isel(speed=0).values
         np.testing.assert_allclose(slowest, 0.1, rtol=0.01)  # asperities carry ~all: f -> mu_b
-    fastest = {f: xr.load_dataset(built / "results" / "data" / f"{f}.nc")["contact_resistance"].isel(speed=-1) for f in ("fig04", "fig08", "fig10")}
+    fastest = {f: xr.load_dataset(built / "results" / "test" / "data" / f"{f}.nc")["contact_resistance"].isel(speed=-1) for f in ("fig04", "fig08", "fig10")}
     assert fastest["fig04"].sel(sigma=1e-6) < fastest["fig04"].sel(sigma=0.5e-6)  # rougher: lower
     assert fastest["fig08"].sel(force=10.0) < fastest["fig08"].sel(force=5.0)  # more force: lower
     assert fastest["fig10"].sel(viscosity=0.03) < fastest["fig10"].sel(viscosity=0.1)  # thinner: lower
@@ -183,11 +183,11 @@ def test_physical_trends(built):
 @pytest.mark.slow
 def test_figures_are_images(built):
     for figure in FIGURES + ["surfaces_psd"]:
-        png = built / "results" / "figures" / f"{figure}.png"
+        png = built / "results" / "test" / "figures" / f"{figure}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         height, width, _ = imread(png).shape
         assert height > 300 and width > 400
-        assert (built / "results" / "figures" / f"{figure}.pdf").read_bytes()[:5] == b"%PDF-"
+        assert (built / "results" / "test" / "figures" / f"{figure}.pdf").read_bytes()[:5] == b"%PDF-"
 
 
 @pytest.mark.slow
@@ -252,12 +252,70 @@ def test_report(built):
 
 
 @pytest.mark.slow
+def test_test_config_writes_only_its_own_directory(built):
+    assert sorted(p.name for p in (built / "results").iterdir()) == ["test"]  # config key results
+
+
+@pytest.mark.slow
+def test_products_pass_the_cf_checker(built):
+    from cfcheck import cf_findings
+
+    out = built / "results" / "test"
+    case = next((out / "cases").glob("*.nc"))
+    files = [case, out / "data" / "fig03.nc", out / "data" / "fig04.nc", out / "data" / "accuracy_cost.nc", out / "accuracy" / "study.nc"]
+    assert [f for path in files for f in cf_findings(path)] == []
+
+
+@pytest.mark.slow
+def test_report_landing_page_says_what_the_run_is(built):
+    snakemake(built, "--report", "report.html", *TINY)
+    html = (built / "report.html").read_text(errors="replace")
+    import lubecontact
+
+    assert f"lubecontact version: {lubecontact.__version__}" in html and "git commit of the workflow tree" in html
+    assert "roughness.sigma = 5e-07, 1e-06" in html and "config/scenes/table1.yaml" in html
+    assert re.search(r"solve_fig04_sigma_1e_06_[0-9a-f]{6}", html)  # readable rule names
+
+
+@pytest.mark.slow
+def test_quiet_dry_run_without_parameter_dumps(fresh):
+    out = snakemake(fresh, *PROFILE, *TINY, "-n")
+    text = out.stdout + out.stderr
+    assert len(text.splitlines()) < 60 and "'set'" not in text and "scene_hash" not in text
+
+
+@pytest.mark.slow
+def test_corrupt_or_deleted_files_are_restored_by_one_plain_rerun(built):
+    """Issue 13: a truncated case, a deleted case and a deleted figure dataset; one plain
+    run moves the bad file aside (naming it), re-solves, re-collects and re-draws."""
+    out = built / "results" / "test"
+    fig04 = xr.load_dataset(out / "data" / "fig04.nc")
+    truncated = out / "cases" / f"{fig04['case_id'].values[1, 2]}.nc"  # sigma = 1 um, 1 m/s
+    deleted = out / "cases" / f"{xr.load_dataset(out / 'data' / 'fig10.nc')['case_id'].values[0, 0]}.nc"  # viscosity 0.03
+    reference = xr.load_dataset(truncated)
+    truncated.write_bytes(truncated.read_bytes()[:2000])
+    deleted.unlink()
+    (out / "data" / "fig08.nc").unlink()
+    figures_before = {p.name: p.stat().st_mtime_ns for p in (out / "figures").glob("fig*.png")}
+    done = snakemake(built, *PROFILE, "--cores", "2", *TINY)
+    assert f"results/test/cases/{truncated.name}: unreadable" in done.stderr and ".corrupt" in done.stderr
+    repaired = xr.load_dataset(truncated)
+    assert repaired["contact_resistance"].item() == pytest.approx(reference["contact_resistance"].item(), rel=1e-9)
+    assert deleted.is_file() and (out / "data" / "fig08.nc").is_file()
+    redrawn = {p.name for p in (out / "figures").glob("fig*.png") if p.stat().st_mtime_ns != figures_before[p.name]}
+    assert redrawn == {"fig04.png", "fig05.png", "fig08.png", "fig10.png", "fig11.png"}
+    assert len(list((out / "cases" / ".corrupt").glob("*.nc"))) == 1
+    assert planned(built, *TINY) == Counter()
+
+
+@pytest.mark.slow
 def test_new_speed_solves_only_new_cases(built):
     """Runs last: changes the built tree."""
-    cases = built / "results" / "cases"
+    cases = built / "results" / "test" / "cases"
     # a rewritten case is a new file (temp file + rename): a new inode; Snakemake only
     # touches the outputs of a job it ran
     before = {p.name: p.stat().st_ino for p in cases.glob("*.nc")}
+    logs_before = {p.name for p in (built / "results" / "test" / "logs" / "solve").glob("*.log")}
     config = built / "config" / "test.yaml"
     config.write_text(config.read_text().replace("    speeds: *speeds\n", "    speeds: [1.0e-3, 0.1, 1.0, 3.0, 10.0]\n", 1))
     # fig04 and fig04p, 2 curves each; fig04p's chunk of the full-path baseline changes, so the
@@ -267,6 +325,7 @@ def test_new_speed_solves_only_new_cases(built):
     after = {p.name: p.stat().st_ino for p in cases.glob("*.nc")}
     assert {name: after[name] for name in before} == before  # no case file rewritten
     assert len(after) - len(before) == 4  # 3 m/s for sigma = 0.5 and 1 um, paper and full path
-    logs = "".join(p.read_text() for p in (built / "results" / "logs" / "solve").glob("fig04_*.log"))
+    # the two fig04 chunks have new members, hence new names and logs (older logs stay)
+    logs = "".join(p.read_text() for p in (built / "results" / "test" / "logs" / "solve").glob("fig04_*.log") if p.name not in logs_before)
     assert logs.count("kept") == 4 and logs.count("converged") >= 2
-    assert xr.load_dataset(built / "results" / "data" / "fig04.nc").sizes["speed"] == 5
+    assert xr.load_dataset(built / "results" / "test" / "data" / "fig04.nc").sizes["speed"] == 5

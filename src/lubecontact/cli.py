@@ -1,12 +1,16 @@
-"""Command line: ``lubecontact solve|sweep|show|roughness``. Exit codes: 0 converged, 2 bad input,
-3 not converged (the file is still written, with converged = 0)."""
+"""Command line: ``lubecontact solve|sweep|show|roughness``. Exit codes: 0 converged; 2 bad input
+(scene, option, --out path, a solve too big for this machine: nothing is solved or written);
+3 no converged result (not converged: the file is still written, with converged = 0; or
+the file could not be written); 130 interrupted (nothing written); 1 internal error (a bug:
+the traceback is saved to a file named in the message)."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
-EXIT_OK, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 0, 2, 3
+EXIT_OK, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_INTERRUPTED, EXIT_INTERNAL = 0, 2, 3, 130, 1
+REPORT_TO = "the lubecontact maintainers (README.md, 'Reporting a bug')"
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -21,13 +25,15 @@ def _parser() -> argparse.ArgumentParser:
     solve = sub.add_parser("solve", help="solve one operating point and write a netCDF case file")
     scene_args(solve)
     solve.add_argument("--fields", action="store_true", help="also write pressure, film and deformation fields")
-    solve.add_argument("--out", required=True, help="output netCDF file")
+    solve.add_argument("--out", required=True, help="output netCDF file (new path or regular file; links are followed)")
+    solve.add_argument("--force-size", action="store_true", help="solve even if the memory estimate exceeds this machine's")
 
     sweep = sub.add_parser("sweep", help="solve the scene over a list of speeds")
     scene_args(sweep)
     sweep.add_argument("--speeds", required=True,
                        help="comma list in m/s (0.001,0.01,0.1) or log range START:STOP:N (1e-4:10:25)")
-    sweep.add_argument("--out", required=True, help="output netCDF file")
+    sweep.add_argument("--out", required=True, help="output netCDF file (new path or regular file; links are followed)")
+    sweep.add_argument("--force-size", action="store_true", help="solve even if the memory estimate exceeds this machine's")
 
     show = sub.add_parser("show", help="validate a scene and print its canonical form and hash")
     scene_args(show)
@@ -46,15 +52,24 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def parse_speeds(text: str) -> list[float]:
+    """Speeds (m/s) from a comma list or a log range START:STOP:N; ValueError says what is allowed."""
+    import math
+
     import numpy as np
 
+    allowed = "allowed: a comma list of finite speeds >= 0 m/s (0.001,0.01,0.1) or START:STOP:N with 0 < START, STOP finite and N >= 1 (1e-4:10:25)"
     try:
         if ":" in text:
-            start, stop, n = text.split(":")
-            return np.geomspace(float(start), float(stop), int(n)).tolist()
-        return [float(v) for v in text.split(",") if v.strip()]
+            start, stop, n = (float(v) for v in text.split(":"))
+            if not (math.isfinite(start) and math.isfinite(stop) and start > 0 and stop > 0 and n >= 1 and n.is_integer()):
+                raise ValueError("out of range")
+            return np.geomspace(start, stop, int(n)).tolist()
+        speeds = [float(v) for v in text.split(",") if v.strip()]
+        if not speeds or not all(math.isfinite(v) and v >= 0 for v in speeds):
+            raise ValueError("empty, not finite or negative")
+        return speeds
     except ValueError as err:
-        raise ValueError(f"--speeds {text!r}: expected a comma list or START:STOP:N ({err})") from None
+        raise ValueError(f"--speeds {text!r}: {err}; {allowed}") from None
 
 
 def _load(args):
@@ -78,8 +93,52 @@ def _summary(ds) -> str:
     return "\n".join(lines)
 
 
+class _BadInput(Exception):
+    """An expected refusal before solving: exit 2 with the message."""
+
+
+def _checked(args, scene, points: int):
+    """The resolved --out path, after the path and size checks (nothing solved yet)."""
+    from . import resources
+    from .outpath import OutputPathError, check_output_path
+
+    try:
+        out = check_output_path(args.out, inputs=[args.scene])
+    except OutputPathError as err:
+        raise _BadInput(str(err)) from None
+    est = resources.estimate(scene, points)
+    refusal = resources.too_big(est)
+    if refusal and not args.force_size:
+        raise _BadInput(refusal)
+    if est.seconds > resources.ANNOUNCE_SECONDS or refusal:
+        print(f"lubecontact: {est.describe()} (estimate)", file=sys.stderr)
+    return out, est
+
+
 def main(argv=None) -> int:
     args = _parser().parse_args(argv)
+    try:
+        return _run(args)
+    except _BadInput as err:
+        print(f"lubecontact: bad input: {err}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("lubecontact: interrupted; nothing was written", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Exception as err:  # a bug: one line here, the traceback in a file
+        import tempfile
+        import traceback
+
+        fd, path = tempfile.mkstemp(prefix="lubecontact-crash-", suffix=".txt")
+        with open(fd, "w") as fh:
+            fh.write(f"lubecontact {' '.join(sys.argv[1:] if argv is None else argv)}\n")
+            traceback.print_exc(file=fh)
+        print(f"lubecontact: internal error ({type(err).__name__}: {err}); this is a bug, please report it "
+              f"to {REPORT_TO} with the traceback saved in {path}", file=sys.stderr)
+        return EXIT_INTERNAL
+
+
+def _run(args) -> int:
     if args.command == "roughness":
         from .surfaces.report import run
 
@@ -101,16 +160,23 @@ def main(argv=None) -> int:
         print(scene.canonical_yaml(), end="")
         return EXIT_OK
     from .output import write_case
+    from .resources import elapsed_bar
 
+    out, est = _checked(args, scene, 1 if speeds is None else len(speeds))
     if args.command == "solve":
         from .solver import solve
 
-        ds = solve(scene, fields=args.fields)
+        with elapsed_bar(est):
+            ds = solve(scene, fields=args.fields)
     else:
         from .speed_sweep import sweep
 
         ds = sweep(scene, speeds)
-    write_case(ds, args.out)
+    try:
+        write_case(ds, out)
+    except OSError as err:
+        print(f"lubecontact: could not write {args.out}: {err.strerror or err}; the result is lost", file=sys.stderr)
+        return EXIT_NOT_CONVERGED
     print(_summary(ds))
     print(f"wrote {args.out}")
     if int(ds["converged"].values.min()) != 1:

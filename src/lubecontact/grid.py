@@ -325,14 +325,15 @@ def plan_chunks(grids: Iterable[FigureGrid], cases_per_job: int | None = None) -
 
     A case belongs to the first grid (in the order given) that has it. Each curve's cases
     that are its own, in speed order, form one chunk (``cases_per_job`` None) or chunks of
-    at most ``cases_per_job``. A chunk's name changes only when its members do.
+    at most ``cases_per_job``. A chunk's name, ``<figure>_<swept values>_<digest>``, says
+    which curve it solves and changes only when its members do.
     """
     if cases_per_job is not None and cases_per_job < 1:
         raise GridError(f"cases_per_job must be >= 1 or 'curve', got {cases_per_job}")
     claimed: set[str] = set()
     chunks = []
     for grid in grids:
-        for _, curve in grid.curves():
+        for index, curve in grid.curves():
             own = []
             for case in curve:
                 if case.id not in claimed:
@@ -341,9 +342,30 @@ def plan_chunks(grids: Iterable[FigureGrid], cases_per_job: int | None = None) -
             size = cases_per_job or len(own) or 1
             for start in range(0, len(own), size):
                 members = tuple(own[start : start + size])
-                digest = hashlib.sha256("\n".join(c.id for c in members).encode()).hexdigest()[:12]
-                chunks.append(Chunk(f"{grid.figure}_{digest}", members))
+                digest = hashlib.sha256("\n".join(c.id for c in members).encode()).hexdigest()[:CHUNK_DIGEST]
+                readable = f"{grid.figure}_{_curve_label(grid, index)}"[: CHUNK_NAME - CHUNK_DIGEST - 1]
+                chunks.append(Chunk(f"{readable.rstrip('_')}_{digest}", members))
     return chunks
+
+
+# Chunk names become rule names (solve_<name>), and Snakemake names a SLURM bundle's job
+# script after its first five rule names plus a uuid: a file name, at most 255 bytes. With
+# names of at most 33 characters (solve_ 6 + figure and curve label, cut to 20, + _ 1 +
+# digest 6) that file name stays below 250 bytes; longer names made every bundle fail to
+# submit.
+CHUNK_NAME = 27
+CHUNK_DIGEST = 6
+
+
+def _curve_label(grid, index) -> str:
+    """'sigma_5e_07_' for the curve at ``index`` of the swept dims: readable rule and log
+    names (cut with the figure id to CHUNK_NAME - CHUNK_DIGEST - 1 characters)."""
+    words = [
+        f"{dim.name}_" + "_".join(f"{v:g}" if isinstance(v, float) else str(v) for v in dim.values[i])
+        for dim, i in zip(grid.dims[:-1], index)
+    ]
+    label = re.sub(r"[^0-9A-Za-z]+", "_", "_".join(words)).strip("_")
+    return f"{label}_" if label else ""
 
 
 # --- which code decides a case -----------------------------------------------------------------

@@ -78,6 +78,22 @@ def case_dataset(scene, scalars: dict, fields: dict | None, mesh, effects_run: d
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 
+def cf_ready(dataset: xr.Dataset) -> tuple[xr.Dataset, dict]:
+    """(dataset with a CF ``history`` line appended, netCDF encoding) for CF-1.10: coordinate
+    variables carry no ``_FillValue`` (CF 2.5.1; xarray adds NaN to every float by default)."""
+    import sys
+    from datetime import datetime, timezone
+    from pathlib import Path
+
+    stamp = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    line = f"{stamp} written by lubecontact {__version__} ({Path(sys.argv[0]).name or 'python'})"
+    previous = dataset.attrs.get("history")
+    out = dataset.copy()
+    out.attrs["history"] = f"{previous}\n{line}" if previous else line
+    encoding = {name: {"_FillValue": None} for name in out.coords if out[name].dtype.kind in "fc"}
+    return out, encoding
+
+
 def write_case(dataset: xr.Dataset, path) -> None:
     """Write atomically: a killed process never leaves a file that looks complete."""
     import os
@@ -86,8 +102,9 @@ def write_case(dataset: xr.Dataset, path) -> None:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    dataset, encoding = cf_ready(dataset)
     try:
-        dataset.to_netcdf(tmp)
+        dataset.to_netcdf(tmp, encoding=encoding)
         os.replace(tmp, path)
     finally:
         if tmp.exists():

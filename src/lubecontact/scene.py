@@ -58,7 +58,7 @@ class _Invalid(Exception):
     """Raised by a rule; the message is the reason (the caller adds key, value and allowed)."""
 
 
-_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+_NUMBER = re.compile(r"[+-]?((0|[1-9]\d*)(\.\d*)?|\.\d+)([eE][+-]?\d+)?")  # decimal: 010 is refused
 
 
 def _as_real(value) -> float:
@@ -322,7 +322,8 @@ class Roughness(_Section):
 
 @dataclass(frozen=True)
 class Lubricant(_Section):
-    viscosity: float = _field(0.1, _positive("Pa s"), "dynamic viscosity mu (isoviscous)")
+    # <= 1e6 Pa s (far above any lubricant): 1e200 overflowed the film coefficients (issue 13)
+    viscosity: float = _field(0.1, _Real("Pa s", low=0.0, high=1e6, high_open=False), "dynamic viscosity mu (isoviscous)")
     # Mineral oils conduct 0.4-2.1 pS/m (Shell Vitrea, Harvey et al., as reported in
     # "Electrical conductivity of motor oil", qsstudy.com): 1 pS/m is 1e12 ohm m.
     resistivity: float = _field(
@@ -448,6 +449,34 @@ class _UniqueKeyLoader(yaml.SafeLoader):
         return super().construct_mapping(node, deep=deep)
 
 
+# Numbers in scenes are decimal only. YAML 1.1 (PyYAML) also reads 0x10 as 16, 010 as 8,
+# 1_000 as 1000 and 1:20 as 80 (base 60): such values stay strings here and are refused
+# ("not a number"), like every other non-number. 1e-6 is read as a number (YAML 1.2).
+_DECIMAL_RESOLVERS = (
+    ("tag:yaml.org,2002:int", re.compile(r"^[-+]?(0|[1-9][0-9]*)$"), list("-+0123456789")),
+    ("tag:yaml.org,2002:float",
+     re.compile(r"^[-+]?(\d+\.\d*|\.\d+)([eE][-+]?\d+)?$|^[-+]?(0|[1-9]\d*)[eE][-+]?\d+$|^[-+]?\.(inf|Inf|INF)$|^\.(nan|NaN|NAN)$"),
+     list("-+0123456789.")),
+)
+_UniqueKeyLoader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if tag not in {t for t, _, _ in _DECIMAL_RESOLVERS}]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()
+}
+for _tag, _regexp, _first in _DECIMAL_RESOLVERS:
+    _UniqueKeyLoader.add_implicit_resolver(_tag, _regexp, _first)
+
+
+def _yaml_value(text: str):
+    """One YAML value with the scene loader's rules (decimal numbers only)."""
+    return yaml.load(text, Loader=_UniqueKeyLoader)
+
+
+EMPTY_SCENE = (
+    "the scene file is empty; for the Table 1 scene write {} in it (every key then takes its "
+    "Table 1 default) or use config/scenes/table1.yaml"
+)
+
+
 def _read(source) -> tuple[object, str]:
     """(raw data, origin for messages) from a path, a mapping or a Scene."""
     if isinstance(source, Scene):
@@ -458,11 +487,14 @@ def _read(source) -> tuple[object, str]:
         path = Path(source)
         try:
             with path.open() as stream:  # a stream: YAML error marks name the file
-                return yaml.load(stream, Loader=_UniqueKeyLoader), str(path)
+                raw = yaml.load(stream, Loader=_UniqueKeyLoader)
         except OSError as err:
             raise SceneError(str(path), [f"cannot read scene file: {err.strerror or err}"]) from err
         except yaml.YAMLError as err:
             raise SceneError(str(path), [f"invalid YAML: {err}"]) from err
+        if raw is None:
+            raise SceneError(str(path), [EMPTY_SCENE])
+        return raw, str(path)
     raise TypeError(f"load_scene expects a path, a mapping or a Scene, not {type(source).__name__}")
 
 
@@ -493,7 +525,7 @@ def _apply_overrides(raw, overrides: Mapping, problems: list[str]):
         key = str(key)
         if isinstance(value, str):
             try:
-                value = yaml.safe_load(value)
+                value = _yaml_value(value)
             except yaml.YAMLError:
                 problems.append(f"{key} = {value!r}: not a valid YAML value")
                 continue
@@ -629,8 +661,6 @@ def load_scene(path_or_mapping, overrides: Mapping | None = None) -> Scene:
     raw, origin = _read(path_or_mapping)
     problems: list[str] = []
     raw = _apply_overrides(_surface_replaces(raw, overrides or {}), overrides or {}, problems)
-    if raw is None:  # an empty file: all defaults
-        raw = {}
     if not isinstance(raw, Mapping):
         raise SceneError(origin, problems + [f"{raw!r}: a scene is a mapping of sections {', '.join(_SECTIONS)}"])
     problems.extend(_unknown_key(str(k)) for k in raw if k not in _SECTIONS)
@@ -653,6 +683,6 @@ def parse_override(text: str) -> tuple[str, object]:
     if not sep or not key:
         raise SceneError("override", [f"{text!r}: expected key=value, e.g. roughness.sigma=1e-6"])
     try:
-        return key, yaml.safe_load(value)
+        return key, _yaml_value(value)
     except yaml.YAMLError as err:
         raise SceneError("override", [f"{key} = {value!r}: not a valid YAML value ({err})"]) from err

@@ -34,6 +34,10 @@ source "$HERE/slurm_lib.sh"
 [ -x "$SMK" ] || slurm_die "$SMK missing: run scripts/setup.sh first"
 [ -n "$GROUP" ] || slurm_die "no 'group-components: NAME: N' entry in $PROFILE/config.yaml"
 [ -f "$SOURCE/$CONFIG" ] || slurm_die "$SOURCE/$CONFIG does not exist"
+# the study's results directory inside a workflow copy (config key `results`, the study's
+# config over config/config.yaml; config/test.yaml: results/test)
+RESULTS=$("$PY" -c 'import sys, yaml; c = {}; [c.update(yaml.safe_load(open(f)) or {}) for f in sys.argv[1:]]; print(c.get("results", "results"))' \
+    "$SOURCE/config/config.yaml" "$SOURCE/$CONFIG")
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/lubecontact-slurm.XXXXXX")
 SMK_PID=
@@ -151,7 +155,7 @@ fi
     || slurm_die "$CLUSTER_SUBMISSIONS sbatch submissions, the dry run planned $planned (see $WORK/cluster-plan.log)"
 [ "$solve_jobs" -le 1 ] || [ "$CLUSTER_SUBMISSIONS" -lt "$solve_jobs" ] \
     || slurm_die "$solve_jobs solve jobs made $CLUSTER_SUBMISSIONS submissions: not bundled (does every solve rule carry group: \"$GROUP\"?)"
-"$PY" "$HERE/check_results.py" compare "$WORK/local/results" "$WORK/cluster/results" \
+"$PY" "$HERE/check_results.py" compare "$WORK/local/$RESULTS" "$WORK/cluster/$RESULTS" \
     || slurm_die "the SLURM run's results differ from the local run's"
 smk "$WORK/cluster" "$WORK/cluster-again.log" "${SLURM_ARGS[@]}" --dry-run \
     || fail_with_log "dry run after the SLURM run failed" "$WORK/cluster-again.log"
@@ -168,13 +172,13 @@ read -r full_planned full_solve_jobs <<<"$counts"
 slurm_log "default study (all figures): $full_planned sbatch submissions for $full_solve_jobs solve jobs (dry run)"
 
 # ---------------------------------------------------------------- faults
-# Both in the cluster run's copy (warm caches), from an empty results/, solve jobs only
+# Both in the cluster run's copy (warm caches), from an empty results directory, solve jobs only
 # (--omit-from collect), one chunk per submission so that the other chunks finish.
 FAULT_ARGS=("${SLURM_ARGS[@]}" --group-components "$GROUP=1" --omit-from collect)
 FAULT_DIR=$WORK/cluster
 
 start_fault_run() {  # log name; sets SMK_PID and RUN_MARK
-    rm -rf "$FAULT_DIR/results"
+    rm -rf "${FAULT_DIR:?}/$RESULTS"
     RUN_MARK=$(last_jobid)
     smk_start "$FAULT_DIR" "$WORK/$1.log" "${FAULT_ARGS[@]}"
 }
@@ -193,7 +197,7 @@ running_solve_job() {  # first running solve job of this run, waits up to 180 s
 
 wait_first_case() {  # until a case file exists (a chunk is half done) or job $1 stops running, <= 60 s
     for _ in $(seq 600); do
-        compgen -G "$FAULT_DIR/results/cases/*.nc" >/dev/null && return 0
+        compgen -G "$FAULT_DIR/$RESULTS/cases/*.nc" >/dev/null && return 0
         [ "$(squeue -h -j "$1" -o %T 2>/dev/null)" = RUNNING ] || return 0
         sleep 0.1
     done
@@ -201,7 +205,7 @@ wait_first_case() {  # until a case file exists (a chunk is half done) or job $1
 
 case_snapshot() {  # path, inode and checksum of every case file (Snakemake may touch mtimes)
     local f
-    for f in "$FAULT_DIR"/results/cases/*.nc; do
+    for f in "$FAULT_DIR/$RESULTS"/cases/*.nc; do
         if [ -e "$f" ]; then echo "${f##*/} $(stat -c %i "$f") $(md5sum <"$f" | cut -c1-32)"; fi
     done | sort
 }
@@ -223,7 +227,7 @@ rerun_after_fault() {
     [ "$submitted" = "$planned" ] || slurm_die "$1: the rerun submitted $submitted jobs, its dry run planned $planned"
     touched=$(case_snapshot | comm -13 - "$WORK/$1-before.txt")
     [ -z "$touched" ] || slurm_die "$1: the rerun rewrote case files that were complete: $touched"
-    counts=$("$PY" "$HERE/check_results.py" partial "$WORK/local/results" "$FAULT_DIR/results") \
+    counts=$("$PY" "$HERE/check_results.py" partial "$WORK/local/$RESULTS" "$FAULT_DIR/$RESULTS") \
         || slurm_die "$1: case files after the rerun differ from the local run's"
     read -r RERUN_PRESENT RERUN_MISSING _ <<<"$counts"
     [ "$RERUN_MISSING" = 0 ] || slurm_die "$1: $RERUN_MISSING cases still missing after the rerun"
@@ -232,7 +236,7 @@ rerun_after_fault() {
 
 left_cases() {  # $1 = name; sets PRESENT MISSING LEFTOVERS, checks every left case is complete
     local counts
-    counts=$("$PY" "$HERE/check_results.py" partial "$WORK/local/results" "$FAULT_DIR/results") \
+    counts=$("$PY" "$HERE/check_results.py" partial "$WORK/local/$RESULTS" "$FAULT_DIR/$RESULTS") \
         || slurm_die "$1: a case file left behind is not complete"
     read -r PRESENT MISSING LEFTOVERS <<<"$counts"
     [ "$MISSING" -gt 0 ] || slurm_die "$1: no case is missing after the fault: it came too late to bite"

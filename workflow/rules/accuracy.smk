@@ -23,12 +23,11 @@ rule accuracy_solve:
         sources=SOLVER_SOURCES,
         study="config/accuracy.yaml",
         code="src/lubecontact/convergence.py",
+        plan=plan_path("accuracy/study", ACCURACY),
     output:
-        "results/accuracy/study.nc",
-    params:
-        study=ACCURACY,
+        f"{RESULTS}/accuracy/study.nc",
     log:
-        "results/logs/accuracy/solve.log",
+        f"{RESULTS}/logs/accuracy/solve.log",
     threads: ACCURACY_THREADS
     resources:
         runtime=60,
@@ -41,15 +40,15 @@ rule accuracy_solve:
 
 rule accuracy_table:
     input:
-        study="results/accuracy/study.nc",
+        study=f"{RESULTS}/accuracy/study.nc",
         code="src/lubecontact/convergence.py",
     output:
-        nc="results/data/accuracy_cost.nc",
-        md=report("results/data/accuracy_cost.md", category="Accuracy and cost"),
+        nc=f"{RESULTS}/data/accuracy_cost.nc",
+        md=report(f"{RESULTS}/data/accuracy_cost.md", category="Accuracy and cost"),
     params:
         targets=ACCURACY["targets"],
     log:
-        "results/logs/accuracy/table.log",
+        f"{RESULTS}/logs/accuracy/table.log",
     conda:
         "../envs/lubecontact.yaml"
     script:
@@ -58,17 +57,17 @@ rule accuracy_table:
 
 rule accuracy_figure:
     input:
-        data="results/data/accuracy_cost.nc",
+        data=f"{RESULTS}/data/accuracy_cost.nc",
         code="src/lubecontact/convergence.py",
     output:
         png=report(
-            "results/figures/accuracy_cost.png",
+            f"{RESULTS}/figures/accuracy_cost.png",
             caption="../scripts/accuracy_caption.rst",
             category="Accuracy and cost",
         ),
-        pdf="results/figures/accuracy_cost.pdf",
+        pdf=f"{RESULTS}/figures/accuracy_cost.pdf",
     log:
-        "results/logs/accuracy/figure.log",
+        f"{RESULTS}/logs/accuracy/figure.log",
     conda:
         "../envs/lubecontact.yaml"
     script:

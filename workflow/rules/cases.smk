@@ -2,7 +2,7 @@
 #
 # Each figure's YAML (config/figures/figNN.yaml, deep-merged with config["figures"][figNN])
 # expands into scenes; a case is identified by its scene's content hash, so a case shared
-# by several figures is one file, results/cases/<hash>.nc, solved once. A bad value fails
+# by several figures is one file, <results>/cases/<hash>.nc, solved once. A bad value fails
 # here, before anything runs, naming the figure, the key and the value.
 
 import sys
@@ -13,11 +13,16 @@ from snakemake.utils import validate
 # Run the library of this tree (src/), the very files declared as solve inputs, whatever
 # lubecontact may be installed elsewhere; the scripts do the same.
 sys.path.insert(0, str(Path(workflow.basedir) / "src"))
+from lubecontact import casefiles as lccases
 from lubecontact import grid as lcgrid
+from lubecontact import plans as lcplans
 
 
 validate(config, "../schemas/config.schema.yaml")
 
+# Everything the workflow writes goes under RESULTS (config key `results`, default
+# "results"; config/test.yaml: results/test).
+RESULTS = config["results"]
 FIGURES = list(config["figures"])
 SPECS = {}
 for _figure in FIGURES:
@@ -37,7 +42,28 @@ wildcard_constraints:
 
 
 def case_path(case_id):
-    return f"results/cases/{case_id}.nc"
+    return f"{RESULTS}/cases/{case_id}.nc"
+
+
+def plan_path(name, data):
+    """A job's plan as a small JSON input file (lubecontact.plans), not as params."""
+    return lcplans.write_plan(f"{RESULTS}/plans/{name}.json", data)
+
+
+# Every case of this config. A case file counts only if it is complete (it opens, reads
+# back, carries its scene hash and solver fingerprint: lubecontact.casefiles); any other
+# file under a case's name (truncated, overwritten) is moved to cases/.corrupt/ here, so
+# Snakemake sees the case missing and solves it again, and rule all (which lists every
+# case and data file) rebuilds what depends on it. Only the main Snakemake process does
+# this, never a job on a cluster node.
+ALL_CASES = {c.id: case_path(c.id) for chunk in CHUNKS for c in chunk.cases}
+try:
+    _main_process = workflow.is_main_process
+except AttributeError:  # an API without execution settings (e.g. some linters)
+    _main_process = False
+if _main_process:
+    for _line in lccases.quarantine(ALL_CASES, f"{RESULTS}/cases/.complete.json"):
+        print(f"lubecontact: {_line}", file=sys.stderr)
 
 
 def solve_resources(cases):

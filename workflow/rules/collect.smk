@@ -1,16 +1,16 @@
 # One netCDF per figure: its cases along the swept parameters and speed, CF attributes
-# (lubecontact.grid.collect). Plain-Python params: a changed grid layout re-collects.
+# (lubecontact.grid.collect). The layout is a JSON plan (plans/collect/<figure>.json): a
+# changed grid layout re-collects. A case file that does not read names itself in the log.
 
 
 rule collect:
     input:
-        lambda w: [case_path(i) for i in GRIDS[w.figure].unique_cases()],
+        cases=lambda w: [case_path(i) for i in GRIDS[w.figure].unique_cases()],
+        plan=lambda w: plan_path(f"collect/{w.figure}", GRIDS[w.figure].layout()),
     output:
-        "results/data/{figure}.nc",
-    params:
-        layout=lambda w: GRIDS[w.figure].layout(),
+        f"{RESULTS}/data/{{figure}}.nc",
     log:
-        "results/logs/collect/{figure}.log",
+        f"{RESULTS}/logs/collect/{{figure}}.log",
     conda:
         "../envs/lubecontact.yaml"
     script:

@@ -1,28 +1,29 @@
-# Figures from results/data/*.nc only (lubecontact.plotting): PNG (in the report) and PDF.
+# Figures from <results>/data/*.nc only (lubecontact.plotting): PNG (in the report) and PDF.
 # Inputs are the data and plotting.py; the plot section of the grid YAML is a param, so a
 # style change re-renders without solving or collecting.
 
 
 rule plot:
     input:
-        data="results/data/{figure}.nc",
+        data=f"{RESULTS}/data/{{figure}}.nc",
         code="src/lubecontact/plotting.py",
         # compare: figXX draws that figure's data dashed on the same axes (figNNp: the paper's)
-        reference=lambda w: [f"results/data/{SPECS[w.figure]['compare']}.nc"] if "compare" in SPECS[w.figure] else [],
+        reference=lambda w: [f"{RESULTS}/data/{SPECS[w.figure]['compare']}.nc"] if "compare" in SPECS[w.figure] else [],
     output:
         png=report(
-            "results/figures/{figure}.png",
+            f"{RESULTS}/figures/{{figure}}.png",
             caption="../scripts/figure_caption.rst",
             category="Figures",
             labels=lambda w: {"figure": w.figure},
         ),
-        pdf="results/figures/{figure}.pdf",
+        pdf=f"{RESULTS}/figures/{{figure}}.pdf",
     params:
+        data=lambda w: f"{RESULTS}/data/{w.figure}.nc",
         plot=lambda w: SPECS[w.figure]["plot"],
         title=lambda w: SPECS[w.figure]["title"],
         caption=lambda w: SPECS[w.figure]["caption"],
     log:
-        "results/logs/plot/{figure}.log",
+        f"{RESULTS}/logs/plot/{{figure}}.log",
     conda:
         "../envs/lubecontact.yaml"
     script:

@@ -2,7 +2,8 @@
 # of one parameter combination), each case from a cold start, one netCDF per case.
 #
 # A job's output files are fixed when the workflow is parsed, so each chunk is its own rule
-# (solve_<figure>_<hash of its members>). Outputs are update(): Snakemake keeps existing
+# (solve_<figure>_<swept values>_<hash of its members>). Its cases are listed in a small
+# JSON plan (plans/solve/<chunk>.json, rewritten only when they change), not in params. Outputs are update(): Snakemake keeps existing
 # case files, and the job skips a case whose file is complete (atomic writes) and was solved
 # by the current solver sources (fingerprint in the file). So a chunk whose membership
 # changed (a speed added to a grid) solves only its new cases, and after a crash of
@@ -23,12 +24,11 @@ for _chunk in CHUNKS:
             f"solve_{_chunk.name}"
         input:
             sources=SOLVER_SOURCES,
+            plan=plan_path(f"solve/{_chunk.name}", [c.plain() for c in _chunk.cases]),
         output:
             [update(case_path(c.id)) for c in _chunk.cases],
-        params:
-            cases=[c.plain() for c in _chunk.cases],
         log:
-            f"results/logs/solve/{_chunk.name}.log",
+            f"{RESULTS}/logs/solve/{_chunk.name}.log",
         # a cluster profile can bundle several chunks per submission (group-components);
         # local runs ignore groups
         group:

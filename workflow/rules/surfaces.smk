@@ -14,13 +14,13 @@ rule surfaces_psd:
         code=SURFACE_CODE,
     output:
         png=report(
-            "results/figures/surfaces_psd.png",
+            f"{RESULTS}/figures/surfaces_psd.png",
             caption="../scripts/surfaces_psd_caption.rst",
             category="Measured surfaces",
         ),
-        pdf="results/figures/surfaces_psd.pdf",
+        pdf=f"{RESULTS}/figures/surfaces_psd.pdf",
     log:
-        "results/logs/plot/surfaces_psd.log",
+        f"{RESULTS}/logs/plot/surfaces_psd.log",
     conda:
         "../envs/lubecontact.yaml"
     script:

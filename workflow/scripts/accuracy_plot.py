@@ -9,8 +9,8 @@ import xarray as xr
 
 from lubecontact import plotting
 from lubecontact.convergence import plot_accuracy_cost
+from lubecontact.joblog import job_log
 
-with open(snakemake.log[0], "w") as log:
-    sys.stdout = sys.stderr = log
+with job_log(snakemake.log[0]):
     fig = plot_accuracy_cost(xr.load_dataset(snakemake.input.data))
     plotting.save(fig, [snakemake.output.png, snakemake.output.pdf])

@@ -9,10 +9,10 @@ sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src")) 
 import xarray as xr
 
 from lubecontact.convergence import accuracy_table, markdown
+from lubecontact.joblog import job_log
 from lubecontact.output import write_case
 
-with open(snakemake.log[0], "w") as log:
-    sys.stdout = sys.stderr = log
+with job_log(snakemake.log[0]):
     table = accuracy_table(xr.load_dataset(snakemake.input.study))
     write_case(table, snakemake.output.nc)
     Path(snakemake.output.md).write_text(markdown(table, snakemake.params.targets))

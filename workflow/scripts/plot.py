@@ -8,9 +8,9 @@ sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src")) 
 import xarray as xr
 
 from lubecontact import plotting
+from lubecontact.joblog import job_log
 
-with open(snakemake.log[0], "w") as log:
-    sys.stdout = sys.stderr = log
+with job_log(snakemake.log[0]):
     ds = xr.load_dataset(snakemake.input.data)
     reference = xr.load_dataset(snakemake.input.reference[0]) if snakemake.input.reference else None
     fig = plotting.render(ds, snakemake.params.plot, snakemake.params.title, reference=reference)

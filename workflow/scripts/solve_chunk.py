@@ -1,11 +1,12 @@
 """Solve the cases of one chunk, one after the other, each from a cold start.
 
-params.cases: [{id, scene, set}] in the order of the output files. A case whose file is
-complete (files are written atomically: temp file + rename) and was solved by the current
-solver sources (fingerprint attribute) is kept, so a job rerun because its membership
-changed or because it was killed solves only what is missing. A case that does not
-converge is written with converged = 0 and the job goes on; a scene that does not rebuild
-to its id, or a solver exception, fails the job loudly.
+input.plan: JSON list of {id, scene, set} in the order of the output files. A case whose
+file is complete (it reads back with its scene hash and the fingerprint of the current
+solver sources: lubecontact.casefiles) is kept, so a job rerun because its membership
+changed or because it was killed solves only what is missing; an unreadable file is
+solved again. A case that does not converge is written with converged = 0 and the job goes
+on; a scene that does not rebuild to its id, or a solver exception, fails the job loudly
+(its traceback in the job's log).
 """
 
 import sys
@@ -13,28 +14,23 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
 
-import xarray as xr
-
 import lubecontact
+from lubecontact.casefiles import FINGERPRINT, case_problem
 from lubecontact.grid import sources_fingerprint
+from lubecontact.joblog import job_log
 from lubecontact.output import write_case
-
-FINGERPRINT = "solver_sources_sha256"
-
-
-def is_current(path, case_id, fingerprint):
-    if not Path(path).exists():
-        return False
-    with xr.open_dataset(path) as ds:
-        return ds.attrs.get("scene_hash") == case_id and ds.attrs.get(FINGERPRINT) == fingerprint
+from lubecontact.plans import read_plan
 
 
 def main(sm):
     fingerprint = sources_fingerprint(sm.input.sources)
-    for path, case in zip(sm.output, sm.params.cases):
-        if is_current(path, case["id"], fingerprint):
+    for path, case in zip(sm.output, read_plan(sm.input.plan)):
+        why = case_problem(path, case["id"], fingerprint)
+        if why is None:
             print(f"{case['id']}: kept {path} (same scene, same solver sources)")
             continue
+        if why != "missing":
+            print(f"{case['id']}: solving again, {path}: {why}")
         scene = lubecontact.load_scene(case["scene"], case["set"])
         if scene.hash != case["id"]:
             raise RuntimeError(
@@ -51,6 +47,5 @@ def main(sm):
         print(f"{case['id']}: {status}, {int(ds['iterations'])} iterations, {float(ds['solve_time']):.2f} s, {case['set']}")
 
 
-with open(snakemake.log[0], "w") as log:
-    sys.stdout = sys.stderr = log
+with job_log(snakemake.log[0]):
     main(snakemake)

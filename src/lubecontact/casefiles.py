@@ -1,0 +1,95 @@
+"""Is a case file complete? A case file (results/cases/<id>.nc) counts only if it opens,
+every variable reads back, and it carries its scene hash and the solver-sources
+fingerprint (the solve job writes both, atomically). Anything else (a truncated or
+overwritten file, a foreign file under the name) is moved aside so that the workflow solves
+the case again: nothing stale is kept, nothing is deleted.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from pathlib import Path
+
+FINGERPRINT = "solver_sources_sha256"
+QUARANTINE = ".corrupt"  # hidden folder next to the case files
+
+
+def case_problem(path, case_id: str, fingerprint: str | None = None) -> str | None:
+    """Why ``path`` is not the complete case ``case_id`` (solved by ``fingerprint``, if
+    given), or None. A missing file is a problem too ("missing")."""
+    import netCDF4
+
+    path = Path(path)
+    if not path.exists():
+        return "missing"
+    try:
+        with netCDF4.Dataset(path) as nc:
+            attrs = {name: nc.getncattr(name) for name in nc.ncattrs()}
+            for var in nc.variables.values():
+                var[...]
+    except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:  # netCDF/HDF5 errors
+        return f"unreadable ({type(err).__name__}: {err})"
+    if attrs.get("scene_hash") != case_id:
+        return f"scene_hash is {attrs.get('scene_hash')!r}, not {case_id!r}"
+    if not attrs.get(FINGERPRINT):
+        return f"no {FINGERPRINT} attribute (not written by a solve job)"
+    if fingerprint is not None and attrs[FINGERPRINT] != fingerprint:
+        return "solved by other solver sources"
+    return None
+
+
+def open_case(path):
+    """The case file as an xarray Dataset (loaded), or RuntimeError naming the file and the
+    remedy (collect's loader)."""
+    import xarray as xr
+
+    try:
+        return xr.load_dataset(path)
+    except Exception as err:  # netCDF/HDF5 raise OSError, RuntimeError, ValueError, ...
+        raise RuntimeError(
+            f"case file {path} does not read ({type(err).__name__}: {err}); run snakemake again: "
+            f"it moves the file aside and solves the case again"
+        ) from err
+
+
+def _signature(path: Path) -> list[int]:
+    st = path.stat()
+    return [st.st_size, st.st_mtime_ns, st.st_ino]
+
+
+def quarantine(cases: dict[str, str], memo) -> list[str]:
+    """Move every existing but incomplete case file aside (``cases``: id -> path); one
+    message per file moved, naming it, why, and where it went.
+
+    Reading ~500 files costs seconds, so a file found complete is remembered in ``memo``
+    (JSON: name -> size, mtime, inode) and read again only when one of those changes (any
+    rewrite, truncation or replacement does)."""
+    import json
+
+    memo = Path(memo)
+    try:
+        known = json.loads(memo.read_text())
+    except (OSError, ValueError):
+        known = {}
+    good, moved = {}, []
+    stamp = time.strftime("%Y%m%dT%H%M%S")
+    for case_id, path in cases.items():
+        path = Path(path)
+        if not path.exists():
+            continue
+        signature = _signature(path)
+        why = None if known.get(path.name) == signature else case_problem(path, case_id)
+        if why is None:
+            good[path.name] = signature
+            continue
+        aside = path.parent / QUARANTINE / f"{path.stem}.{stamp}{path.suffix}"
+        aside.parent.mkdir(exist_ok=True)
+        os.replace(path, aside)
+        moved.append(f"{path}: {why}; moved to {aside}, the case will be solved again")
+    if good != known and (good or memo.exists()):
+        memo.parent.mkdir(parents=True, exist_ok=True)
+        tmp = memo.with_name(f".{memo.name}.{os.getpid()}.tmp")
+        tmp.write_text(json.dumps(good, sort_keys=True))
+        os.replace(tmp, memo)
+    return moved

@@ -1,0 +1,33 @@
+"""What a workflow job is to do, in a small JSON file instead of Snakemake params (params
+are printed with every job and every dry run; a chunk's case list is long).
+
+The file is rewritten only when its content changes, so its modification time is the
+time of the last change of the plan: Snakemake reruns the job then, and only then (the
+role the params rerun trigger had).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+
+def write_plan(path, data) -> str:
+    """Write ``data`` as JSON to ``path`` unless the file already holds exactly that."""
+    path = Path(path)
+    text = json.dumps(data, indent=1, sort_keys=True) + "\n"
+    try:
+        if path.read_text() == text:
+            return str(path)
+    except OSError:
+        pass
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+    return str(path)
+
+
+def read_plan(path):
+    return json.loads(Path(path).read_text())

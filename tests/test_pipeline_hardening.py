@@ -1,0 +1,85 @@
+"""Issue 13 in the pipeline's library pieces: a case file counts only if complete
+(lubecontact.casefiles), job logs keep tracebacks (lubecontact.joblog), job plans are files
+rewritten only on change (lubecontact.plans). End to end: test_workflow.py."""
+
+import os
+import re
+import sys
+
+import pytest
+
+from lubecontact import casefiles, joblog, plans
+from lubecontact.scene import load_scene
+from lubecontact.solver import solve
+from lubecontact.output import write_case
+
+
+@pytest.fixture(scope="module")
+def case(tmp_path_factory):
+    scene = load_scene({}, {"mesh.nx": 15, "mesh.ny": 1})
+    ds = solve(scene)
+    ds.attrs[casefiles.FINGERPRINT] = "abc"
+    path = tmp_path_factory.mktemp("case") / f"{scene.hash}.nc"
+    write_case(ds, path)
+    return path, scene.hash
+
+
+def test_complete_case_and_every_kind_of_incomplete_one(case, tmp_path):
+    path, case_id = case
+    assert casefiles.case_problem(path, case_id) is None
+    assert casefiles.case_problem(path, case_id, "abc") is None
+    assert casefiles.case_problem(path, case_id, "other") == "solved by other solver sources"
+    assert casefiles.case_problem(path, "0" * 16).startswith("scene_hash is")
+    assert casefiles.case_problem(tmp_path / "none.nc", case_id) == "missing"
+    data = path.read_bytes()
+    for name, content in {"truncated": data[: len(data) // 2], "empty": b"", "text": b"not netcdf"}.items():
+        bad = tmp_path / f"{name}.nc"
+        bad.write_bytes(content)
+        assert casefiles.case_problem(bad, case_id).startswith("unreadable"), name
+        with pytest.raises(RuntimeError, match=f"(?s)case file {re.escape(str(bad))} does not read.*run snakemake again"):
+            casefiles.open_case(bad)
+
+
+def test_quarantine_moves_only_bad_files_and_remembers_good_ones(case, tmp_path):
+    path, case_id = case
+    good = tmp_path / f"{case_id}.nc"
+    good.write_bytes(path.read_bytes())
+    bad = tmp_path / "0123456789abcdef.nc"
+    bad.write_bytes(path.read_bytes()[:3000])
+    memo = tmp_path / ".complete.json"
+    cases = {case_id: str(good), "0123456789abcdef": str(bad), "fedcba9876543210": str(tmp_path / "absent.nc")}
+    moved = casefiles.quarantine(cases, memo)
+    assert len(moved) == 1 and moved[0].startswith(f"{bad}: unreadable") and not bad.exists()
+    assert len(list((tmp_path / ".corrupt").iterdir())) == 1 and good.exists()
+    # remembered: not read again while size, mtime and inode stay (a stub reader proves it)
+    reads = []
+    original = casefiles.case_problem
+    casefiles.case_problem = lambda *a, **k: reads.append(a) or original(*a, **k)
+    try:
+        assert casefiles.quarantine(cases, memo) == [] and reads == []
+        good.write_bytes(path.read_bytes()[:100])  # truncated in place: re-read and moved
+        assert len(casefiles.quarantine(cases, memo)) == 1 and len(reads) == 1
+    finally:
+        casefiles.case_problem = original
+
+
+def test_job_log_keeps_the_traceback_and_restores_the_streams(tmp_path):
+    log = tmp_path / "job.log"
+    saved = sys.stdout, sys.stderr
+    with pytest.raises(ZeroDivisionError):
+        with joblog.job_log(log):
+            print("working")
+            1 / 0
+    assert (sys.stdout, sys.stderr) == saved
+    text = log.read_text()
+    assert text.startswith("working\n") and "Traceback" in text and "ZeroDivisionError" in text
+
+
+def test_plan_file_is_rewritten_only_when_it_changes(tmp_path):
+    path = tmp_path / "plans" / "solve" / "x.json"
+    plans.write_plan(path, [{"id": "a", "set": {"k": 1.0}}])
+    os.utime(path, ns=(1, 1))
+    plans.write_plan(path, [{"id": "a", "set": {"k": 1.0}}])
+    assert path.stat().st_mtime_ns == 1  # same plan: untouched, so no rerun
+    plans.write_plan(path, [{"id": "a", "set": {"k": 2.0}}])
+    assert path.stat().st_mtime_ns > 1 and plans.read_plan(path) == [{"id": "a", "set": {"k": 2.0}}]

@@ -1,0 +1,47 @@
+# What the HTML report's landing page (workflow/report/workflow.rst) says about this run:
+# lubecontact version, git commit of the tree, results directory and, for each figure, its
+# base scene and what it sweeps. Snakemake renders that page with the config only, so the
+# facts go into config["_run"] (a key no config file may set: the schema forbids it).
+
+import subprocess
+
+import lubecontact
+
+
+def _git_state(root):
+    def git(*args):
+        return subprocess.run(["git", "-C", str(root), *args], capture_output=True, text=True, timeout=20)
+
+    try:
+        head = git("rev-parse", "--short=12", "HEAD")
+        if head.returncode != 0:
+            return "unknown (not a git checkout)"
+        dirty = git("status", "--porcelain", "--untracked-files=no").stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown (git not available)"
+    return head.stdout.strip() + (" with uncommitted changes" if dirty else "")
+
+
+def _figure_facts(figure):
+    g = GRIDS[figure]
+    sweeps = "; ".join(
+        f"{', '.join(d.keys)} = {', '.join(' x '.join(f'{v:g}' for v in vals) for vals in d.values)}"
+        for d in g.dims[:-1]
+    )
+    speeds = g.dims[-1].values
+    return {
+        "figure": figure,
+        "title": SPECS[figure]["title"],
+        "scene": SPECS[figure]["scene"] + (f" with {SPECS[figure]['set']}" if SPECS[figure].get("set") else ""),
+        "scene_hash": g.base.hash,
+        "sweep": sweeps or "nothing",
+        "speeds": f"{len(speeds)} speeds, {min(speeds)[0]:g} to {max(speeds)[0]:g} m/s",
+    }
+
+
+config["_run"] = {
+    "version": lubecontact.__version__,
+    "git": _git_state(workflow.basedir),
+    "results": RESULTS,
+    "figures": [_figure_facts(f) for f in FIGURES],
+}
