@@ -223,13 +223,13 @@ def test_measured_surfaces_and_fixed_alpha(built):
     """fig04_measured: the rougher, sharper sample (honed, sigma ~1 um, R_peak ~26 um) keeps
     lower resistance at speed; fig04_alpha: sigma R_peak held, the curves are other cases
     than fig04's except the shared baseline."""
-    measured = xr.load_dataset(built / "results" / "data" / "fig04_measured.nc")
+    measured = xr.load_dataset(built / "results" / "test" / "data" / "fig04_measured.nc")
     fastest = measured["contact_resistance"].isel(speed=-1)
     assert measured["surface"].values.tolist() == ["../surfaces/ground.asc", "../surfaces/honed.asc"]
     assert fastest.sel(surface="../surfaces/honed.asc") < fastest.sel(surface="../surfaces/ground.asc")
-    alpha = xr.load_dataset(built / "results" / "data" / "fig04_alpha.nc")
+    alpha = xr.load_dataset(built / "results" / "test" / "data" / "fig04_alpha.nc")
     assert (alpha["sigma"] * alpha["asperity_radius"]).values == pytest.approx([5e-11, 5e-11])
-    fig04 = xr.load_dataset(built / "results" / "data" / "fig04.nc")
+    fig04 = xr.load_dataset(built / "results" / "test" / "data" / "fig04.nc")
     assert (alpha["case_id"].isel(roughness=0).values == fig04["case_id"].sel(sigma=0.5e-6).values).all()
     assert not set(alpha["case_id"].isel(roughness=1).values) & set(fig04["case_id"].values.ravel())
 
@@ -303,7 +303,8 @@ def test_corrupt_or_deleted_files_are_restored_by_one_plain_rerun(built):
     assert repaired["contact_resistance"].item() == pytest.approx(reference["contact_resistance"].item(), rel=1e-9)
     assert deleted.is_file() and (out / "data" / "fig08.nc").is_file()
     redrawn = {p.name for p in (out / "figures").glob("fig*.png") if p.stat().st_mtime_ns != figures_before[p.name]}
-    assert redrawn == {"fig04.png", "fig05.png", "fig08.png", "fig10.png", "fig11.png"}
+    # and the full-path figures drawn over those datasets (compare: figNN)
+    assert redrawn == {"fig04.png", "fig05.png", "fig08.png", "fig10.png", "fig11.png", "fig04p.png", "fig08p.png", "fig10p.png"}
     assert len(list((out / "cases" / ".corrupt").glob("*.nc"))) == 1
     assert planned(built, *TINY) == Counter()
 

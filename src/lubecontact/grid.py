@@ -357,11 +357,16 @@ CHUNK_NAME = 27
 CHUNK_DIGEST = 6
 
 
+def value_text(value) -> str:
+    """A swept value as text: numbers in %g form, anything else (a surface file) as it is."""
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
 def _curve_label(grid, index) -> str:
     """'sigma_5e_07_' for the curve at ``index`` of the swept dims: readable rule and log
     names (cut with the figure id to CHUNK_NAME - CHUNK_DIGEST - 1 characters)."""
     words = [
-        f"{dim.name}_" + "_".join(f"{v:g}" if isinstance(v, float) else str(v) for v in dim.values[i])
+        f"{dim.name}_" + "_".join(value_text(v) for v in dim.values[i])
         for dim, i in zip(grid.dims[:-1], index)
     ]
     label = re.sub(r"[^0-9A-Za-z]+", "_", "_".join(words)).strip("_")

@@ -25,7 +25,7 @@ def _git_state(root):
 def _figure_facts(figure):
     g = GRIDS[figure]
     sweeps = "; ".join(
-        f"{', '.join(d.keys)} = {', '.join(' x '.join(f'{v:g}' for v in vals) for vals in d.values)}"
+        f"{', '.join(d.keys)} = {', '.join(' x '.join(lcgrid.value_text(v) for v in vals) for vals in d.values)}"
         for d in g.dims[:-1]
     )
     speeds = g.dims[-1].values
