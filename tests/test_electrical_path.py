@@ -139,14 +139,18 @@ def test_uniform_film_conductance():
 
 # --- the path in the solver ---------------------------------------------------------------------------
 
-# contact_resistance of the paper's model measured on main before the electrical path existed,
-# on main's automatic domain [-3.5 s, 1.5 s] (the automatic inlet now also follows the film:
-# test_domain.py)
+# contact_resistance of the paper's model with the electrical path's effects off, on main's
+# automatic domain [-3.5 s, 1.5 s] (the automatic inlet now also follows the film:
+# test_domain.py). The dry value is the one measured before the electrical path existed; the
+# lubricated ones were measured again after the flow near contact changed (issue 11:
+# percolating flow factor evaluated on the finite-volume faces; before it they were
+# 5.1527777436384485e-05, 803651491.5605284 and 2.268687550677048e-06 ohm on these coarse
+# meshes), so that this test guards the electrical path, not the fluid model.
 PAPER_VALUES = [
     ({"mesh.nx": 21, "mesh.ny": 1, "operating.speed": 0.0}, 1.8258480325425027e-06),
-    ({"mesh.nx": 21, "mesh.ny": 1, "operating.speed": 1.0}, 5.1527777436384485e-05),
-    ({"mesh.nx": 21, "mesh.ny": 1, "operating.speed": 10.0}, 803651491.5605284),
-    ({"mesh.nx": 15, "mesh.ny": 11, "operating.speed": 0.1}, 2.268687550677048e-06),
+    ({"mesh.nx": 21, "mesh.ny": 1, "operating.speed": 1.0}, 7.366027879195133e-05),
+    ({"mesh.nx": 21, "mesh.ny": 1, "operating.speed": 10.0}, 5876068129.246196),
+    ({"mesh.nx": 15, "mesh.ny": 11, "operating.speed": 0.1}, 3.3574075847334206e-06),
 ]
 
 

@@ -173,7 +173,11 @@ def test_physical_trends(built):
         resistance = ds["contact_resistance"].transpose(..., "speed").values
         assert (np.diff(resistance, axis=-1) > 0).all(), f"{figure}: resistance must rise with speed"
         slowest = ds["friction_coefficient"].isel(speed=0).values
-        np.testing.assert_allclose(slowest, 0.1, rtol=0.01)  # asperities carry ~all: f -> mu_b
+        contact_share = 1.0 - ds["fluid_load_fraction"].isel(speed=0).values
+        assert (contact_share > 0.95).all(), f"{figure}: asperities carry ~all at the slowest speed"
+        # viscous shear negligible there: f -> mu_b F_cont / F (the fluid carries up to 2.6 % at
+        # 1e-3 m/s on these 15 x 11 meshes since sealed pockets hold their pressure: README)
+        np.testing.assert_allclose(slowest, 0.1 * contact_share, rtol=0.01)
     fastest = {f: xr.load_dataset(built / "results" / "test" / "data" / f"{f}.nc")["contact_resistance"].isel(speed=-1) for f in ("fig04", "fig08", "fig10")}
     assert fastest["fig04"].sel(sigma=1e-6) < fastest["fig04"].sel(sigma=0.5e-6)  # rougher: lower
     assert fastest["fig08"].sel(force=10.0) < fastest["fig08"].sel(force=5.0)  # more force: lower

@@ -51,6 +51,7 @@ from .reynolds import (
     SET_TOLERANCE,
     _coarser,
     _interior,
+    _couette_face_flux,
     _interpolate,
     adjoint_sensitivity,
     reynolds_system,
@@ -89,11 +90,11 @@ class JFOSolution:
                                    self.face_content)
 
 
-def _couette_operator(mesh, expected_gap, speed, unknown):
+def _couette_operator(mesh, expected_gap, speed, unknown, faces=None):
     """(G, g0): the net Couette outflow of the unknown nodes is G theta_u + g0 for theta = 1
     off the unknowns (boundary and film-less nodes): G (n, n) sparse, g0 (n,) m^3/s."""
     shape = mesh.shape
-    c = 0.5 * speed * 0.5 * (expected_gap[:, :-1] + expected_gap[:, 1:]) * mesh.dy  # (ny, nx-1), signed
+    c = _couette_face_flux(mesh, expected_gap, speed, faces)  # (ny, nx-1), signed
     index = np.arange(shape[0] * shape[1]).reshape(shape)
     number = np.full(shape, -1)
     n = int(unknown.sum())
@@ -195,7 +196,7 @@ def _cold_guess(mesh, expected_gap, coefficient, speed, storage, max_iterations)
 
 
 def solve_jfo(mesh, expected_gap, coefficient, speed, cavitated_guess=None, max_iterations=100,
-              storage=None, reuse=None) -> JFOSolution:
+              storage=None, reuse=None, faces=None) -> JFOSolution:
     """Pressure and film content of the JFO problem (module docstring), p = 0 on the boundary.
 
     ``cavitated_guess`` (ny, nx) bool warm-starts the active set (else the nested cold
@@ -203,13 +204,15 @@ def solve_jfo(mesh, expected_gap, coefficient, speed, cavitated_guess=None, max_
     ``reuse``: the solution of a nearby problem on the same mesh (the previous evaluation of
     a coupled iteration); when the first step is on its active set, it runs by GMRES
     preconditioned with its LU factors (SystemInverse) instead of a new factorisation.
+    ``faces`` (percolation.FaceFilm): the film on the faces (reynolds.reynolds_system); the
+    nested cold start uses the nodal fields.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
-    system = reynolds_system(mesh, expected_gap, coefficient, speed)
+    system = reynolds_system(mesh, expected_gap, coefficient, speed, faces)
     unknown = system.unknown
     A = system.matrix
-    G, g0 = _couette_operator(mesh, expected_gap, speed, unknown)
+    G, g0 = _couette_operator(mesh, expected_gap, speed, unknown, faces)
     n = A.shape[0]
     capacity = np.zeros(n) if storage is None else np.asarray(storage[0], dtype=float)[unknown]
     history = np.zeros(n) if storage is None else np.asarray(storage[1], dtype=float)[unknown]

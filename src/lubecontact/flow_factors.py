@@ -19,6 +19,10 @@ with h. Below H = 0.5 the Poiseuille coefficient follows the expected gap
 
 continuous at H = 0.5, positive, and monotone in H. Smooth surfaces (sigma None or 0, i.e.
 ``asperity_contact`` off) use h itself with phi = 1.
+
+The coupled solver uses, for rough surfaces, the law down to percolation instead
+(``percolating_coefficient_and_slope``, physics.md section 15: zero flow at h = 0 up to a
+leak); the regularised k above remains the estimate of effects.py's automatic decisions.
 """
 
 from __future__ import annotations
@@ -123,3 +127,40 @@ def poiseuille_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
 def poiseuille_coefficient(h, sigma, viscosity, flow_factors=True):
     """k of ``poiseuille_coefficient_and_slope``, m^3/(Pa s)."""
     return poiseuille_coefficient_and_slope(h, sigma, viscosity, flow_factors)[0]
+
+
+# Below the percolation threshold (physics.md section 15) the lubricant sits in closed pockets
+# and the averaged film stops conducting. Threshold: the mean gap h = 0, where the open part
+# of a Gaussian gap {gap > 0} covers half the plane, the 2D level-set percolation threshold
+# of a symmetric random field (Zallen & Scher 1971, Phys. Rev. B 4:4471; the effective-medium
+# threshold of Bruggeman/Kirkpatrick is the same area fraction 1/2).
+# Between the threshold and H = 0.5 the conductance rises as the open fraction's distance
+# from it, exponent t = 1 (the effective-medium conductivity exponent):
+#     k(H) = k(0.5) [(Phi(H) - 1/2) / (Phi(0.5) - 1/2)]       0 < H < 0.5,    0 for H <= 0.
+# A sealed film still leaks a little (finite pockets, the asperity-scale remaking of closed
+# clusters by sliding): k never falls below SEALED_LEAKAGE k(0.5). In steady state any leak
+# equilibrates the pockets with the film around them, so the answer is the limit of a
+# vanishing leak: on Table 1 (line mode, 51-201 nodes, 0.01 m/s) the fluid load changes by
+# < 0.9 % between leakages 1e-2 and 1e-4 and by < 0.1 % between 1e-3 and 1e-4
+# (bench/RESULTS_flow.md).
+SEALED_LEAKAGE = 1e-3
+
+
+def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
+    """(k, dk/dh) of the Poiseuille coefficient down to percolation, m^3/(Pa s) and m^2/(Pa s):
+    Patir-Cheng's (``poiseuille_coefficient_and_slope``) for H = h/sigma >= 0.5, the
+    percolation law above for H < 0.5, floored at SEALED_LEAKAGE k(0.5) (slope 0 there).
+    Continuous at H = 0.5, non-decreasing in h. Needs rough surfaces (sigma > 0)."""
+    h = np.asarray(h, dtype=float)
+    H = h / sigma
+    upper, upper_slope = poiseuille_coefficient_and_slope(np.maximum(h, H_VALID * sigma), sigma, viscosity,
+                                                          flow_factors)
+    k_valid = poiseuille_coefficient(H_VALID * sigma, sigma, viscosity, flow_factors)
+    reference = ndtr(H_VALID) - 0.5
+    share = np.clip((ndtr(H) - 0.5) / reference, 0.0, 1.0)
+    share_slope = np.where(H > 0.0, _INV_SQRT_2PI * np.exp(-0.5 * np.minimum(H, H_VALID) ** 2) / reference, 0.0)
+    above = H >= H_VALID
+    k = np.where(above, upper, k_valid * share)
+    slope = np.where(above, upper_slope, k_valid * share_slope / sigma)
+    leaking = k < SEALED_LEAKAGE * k_valid
+    return np.where(leaking, SEALED_LEAKAGE * k_valid, k), np.where(leaking, 0.0, slope)

@@ -47,6 +47,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 from .mesh import Mesh
+from .percolation import FaceFilm
 
 # Hysteresis of the active-set update, relative to the scales of p and w: a node changes
 # side only when its multiplier or pressure is clearly of the wrong sign, so round-off near
@@ -106,15 +107,21 @@ def _interior(shape: tuple[int, int], line: bool) -> np.ndarray:
     return interior
 
 
-def _face_transmissibilities(mesh, coefficient):
-    """T of x faces (ny, nx-1) and y faces (ny-1, nx; empty in line mode), m^3/(Pa s)."""
+def _face_transmissibilities(mesh, coefficient, faces=None):
+    """T of x faces (ny, nx-1) and y faces (ny-1, nx; empty in line mode), m^3/(Pa s): means
+    of the nodal k, or ``faces`` (percolation.FaceFilm) evaluated at the faces."""
+    if faces is not None:
+        return faces.coefficient_x * (mesh.dy / mesh.dx), faces.coefficient_y * (mesh.dx / mesh.dy)
     tx = 0.5 * (coefficient[:, :-1] + coefficient[:, 1:]) * (mesh.dy / mesh.dx)
     ty = 0.5 * (coefficient[:-1, :] + coefficient[1:, :]) * (mesh.dx / mesh.dy)
     return tx, ty
 
 
-def _couette_face_flux(mesh, expected_gap, speed):
-    """Couette flux (U/2) h_T,f dy through each x face, m^3/s, (ny, nx-1)."""
+def _couette_face_flux(mesh, expected_gap, speed, faces=None):
+    """Couette flux (U/2) h_T,f dy through each x face, m^3/s, (ny, nx-1); h_T,f the mean of
+    the nodal h_T, or faces.gap_x (percolation.FaceFilm)."""
+    if faces is not None:
+        return 0.5 * speed * faces.gap_x * mesh.dy
     return 0.5 * speed * 0.5 * (expected_gap[:, :-1] + expected_gap[:, 1:]) * mesh.dy
 
 
@@ -128,15 +135,17 @@ def _check_fields(mesh, expected_gap, coefficient):
         raise ValueError(f"Poiseuille coefficient must be >= 0; min {coefficient.min():.3g}")
 
 
-def reynolds_system(mesh, expected_gap, coefficient, speed) -> ReynoldsSystem:
+def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None) -> ReynoldsSystem:
     """Assemble the finite-volume Reynolds equation (Eq. 1) without loops over nodes.
 
-    expected_gap = h_T (ny, nx) m, coefficient = k (ny, nx) m^3/(Pa s), speed = U m/s.
+    expected_gap = h_T (ny, nx) m, coefficient = k (ny, nx) m^3/(Pa s), speed = U m/s;
+    ``faces`` (percolation.FaceFilm): k and h_T of the faces instead of nodal means. A node
+    whose faces all carry no flow (sealed) is not an unknown and stays at p = 0.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
     _check_fields(mesh, expected_gap, coefficient)
-    tx, ty = _face_transmissibilities(mesh, coefficient)
+    tx, ty = _face_transmissibilities(mesh, coefficient, faces)
 
     diagonal = np.zeros(mesh.shape)
     diagonal[:, :-1] += tx
@@ -158,7 +167,7 @@ def reynolds_system(mesh, expected_gap, coefficient, speed) -> ReynoldsSystem:
         (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)
     )
 
-    couette = _couette_face_flux(mesh, expected_gap, speed)
+    couette = _couette_face_flux(mesh, expected_gap, speed, faces)
     outflow = np.zeros(mesh.shape)
     outflow[:, 1:-1] = couette[:, 1:] - couette[:, :-1]
     return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown)
@@ -334,7 +343,7 @@ def _reusable(mesh, system, first_free, reuse):
 
 
 def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
-                   cavitated_guess=None, max_iterations=100, reuse=None) -> ReynoldsSolution:
+                   cavitated_guess=None, max_iterations=100, reuse=None, faces=None) -> ReynoldsSolution:
     """Fluid pressure of Eq. (1) with p = 0 on the boundary.
 
     cavitation=True: Reynolds (Swift-Stieber) condition by the primal-dual active-set method.
@@ -346,12 +355,14 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     ``reuse``: the solution of a nearby problem on the same mesh (the previous evaluation of
     a coupled iteration); when the first linear solve is on its pressurised set, it runs by
     CG preconditioned with its LU factors (BlockInverse) instead of a new factorisation.
+    ``faces`` (percolation.FaceFilm): the film on the faces (reynolds_system); the nested
+    cold start on coarser meshes uses the nodal fields.
     """
     if max_iterations < 1:
         raise ValueError(f"max_iterations must be >= 1, got {max_iterations}")
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
-    system = reynolds_system(mesh, expected_gap, coefficient, speed)
+    system = reynolds_system(mesh, expected_gap, coefficient, speed, faces)
     matrix, rhs = system.matrix, system.rhs
     if not cavitation:
         cavitated = np.zeros(rhs.size, dtype=bool)
@@ -434,12 +445,26 @@ def adjoint_sensitivity(mesh, adjoint, pressure, gap_slope, coefficient_slope, s
     the finite-volume residual r: Poiseuille faces T_f (p_a - p_b), Couette x faces
     c_f theta_f (a the node before b; ``face_content`` theta_f (ny, nx-1), 1 if None), with
     T_f and c_f face means of nodal k and h_T, so each face passes half its derivative to
-    each of its nodes (see load_sensitivity)."""
+    each of its nodes (see load_sensitivity). With ``coefficient_slope`` a
+    percolation.FaceFilm of derivatives in the face film h_f = (h_a + h_b)/2 (faces
+    evaluated at their own film), ``gap_slope`` is unused and each face passes half of its
+    own derivative to each node."""
     p = pressure
-    coefficient_part = np.zeros(mesh.shape)
-    couette_part = np.zeros(mesh.shape)
     jump_x = adjoint[:, :-1] - adjoint[:, 1:]
     content = 1.0 if face_content is None else face_content
+    if isinstance(coefficient_slope, FaceFilm):
+        face_x = (0.5 * (mesh.dy / mesh.dx) * jump_x * (p[:, :-1] - p[:, 1:]) * coefficient_slope.coefficient_x
+                  + 0.25 * speed * mesh.dy * jump_x * content * coefficient_slope.gap_x)
+        face_y = (0.5 * (mesh.dx / mesh.dy) * (adjoint[:-1, :] - adjoint[1:, :]) * (p[:-1, :] - p[1:, :])
+                  * coefficient_slope.coefficient_y)
+        sensitivity = np.zeros(mesh.shape)
+        sensitivity[:, :-1] -= face_x
+        sensitivity[:, 1:] -= face_x
+        sensitivity[:-1, :] -= face_y
+        sensitivity[1:, :] -= face_y
+        return sensitivity
+    coefficient_part = np.zeros(mesh.shape)
+    couette_part = np.zeros(mesh.shape)
     for part, face in (
         (coefficient_part, 0.5 * (mesh.dy / mesh.dx) * jump_x * (p[:, :-1] - p[:, 1:])),
         (couette_part, 0.25 * speed * mesh.dy * jump_x * content),

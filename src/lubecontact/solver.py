@@ -143,39 +143,66 @@ class State:
 # value (h_T = sigma/sqrt(2 pi)). For the film content there is a physical reason: below the
 # percolation threshold of a Gaussian gap (h = 0, flow_factors.py) the lubricant sits in
 # closed pockets, incompressible, and is carried through the contact with the volume it was
-# sealed with, so its Couette content stops following h_T(h). For the Poiseuille coefficient
-# there is none: k is held at its h = 0 value where percolation would make it 0. Setting
-# k = 0 there (with the pockets at p = 0, or carrying the pressure of the film edge they
-# were sealed at) made the coupled solve bistable or cycle between sealed sets on 51^2
-# Table 1 meshes (bench/RESULTS_flow.md); the plain regularisation without any floor gives
-# pressures ~ 1/h_T^2 (1e9-1e170 Pa) and no solution. Friction does not use this floor
+# sealed with, so its Couette content stops following h_T(h). The Poiseuille coefficient is
+# not floored: it follows the percolation law down to the threshold and leaks below it
+# (flow_factors.percolating_coefficient_and_slope), evaluated on the faces
+# (percolation.py), where it closes continuously. Friction does not use this floor
 # (friction.py: Patir-Cheng shear factors are finite for h <= 0).
 FLUID_FILM_FLOOR_SIGMAS = 0.0
 
 
-def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
-    """(h_T, k) for the Reynolds equation: Patir-Cheng gap and flow coefficient (Eqs. 1-2);
-    with ``slopes`` also their derivatives (dh_T/dh, dk/dh) for the adjoint (0 below the floor).
-    With flow factors between surfaces of unequal roughness (roughness.split != 0.5) the gap
-    is the Couette gap h_T + sigma phi_s of the shear flow factor (shear_factors.couette_gap)."""
-    from .flow_factors import expected_gap, expected_gap_slope, poiseuille_coefficient_and_slope
+def _content_law(model: Model):
+    """h -> (h_T, dh_T/dh): Patir-Cheng expected gap, or with flow factors between surfaces of
+    unequal roughness (roughness.split != 0.5) the Couette gap h_T + sigma phi_s of the shear
+    flow factor (shear_factors.couette_gap)."""
+    from .flow_factors import expected_gap, expected_gap_slope
 
     scene = model.scene
     sigma = model.contact.sigma if model.contact is not None else None
+    if sigma is not None and scene.effects.flow_factors and scene.roughness.split != 0.5:
+        from functools import partial
+
+        from .shear_factors import couette_gap
+
+        return partial(couette_gap, sigma=sigma, split=scene.roughness.split)
+    return lambda h: (expected_gap(h, sigma), expected_gap_slope(h, sigma))
+
+
+def _coefficient_law(model: Model):
+    """h -> (k, dk/dh): Patir-Cheng's Poiseuille coefficient down to percolation (rough
+    surfaces), or h^3/(12 mu) (smooth)."""
+    from .flow_factors import percolating_coefficient_and_slope, poiseuille_coefficient_and_slope
+
+    scene = model.scene
+    law = poiseuille_coefficient_and_slope if model.contact is None else percolating_coefficient_and_slope
+    sigma = None if model.contact is None else model.contact.sigma
+    return lambda h: law(h, sigma, scene.lubricant.viscosity, scene.effects.flow_factors)
+
+
+def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
+    """(h_T, k) at the nodes for the Reynolds equation (Eqs. 1-2; _content_law and
+    _coefficient_law, the content frozen below FLUID_FILM_FLOOR_SIGMAS); with ``slopes``
+    also their derivatives (dh_T/dh, dk/dh) for the adjoint (content slope 0 below the floor)."""
+    sigma = model.contact.sigma if model.contact is not None else None
+    k, dk = _coefficient_law(model)(film)
     held = np.zeros(film.shape, dtype=bool)
     if sigma is not None:
         held = film < FLUID_FILM_FLOOR_SIGMAS * sigma
         film = np.maximum(film, FLUID_FILM_FLOOR_SIGMAS * sigma)
-    k, dk = poiseuille_coefficient_and_slope(film, sigma, scene.lubricant.viscosity, scene.effects.flow_factors)
-    if sigma is not None and scene.effects.flow_factors and scene.roughness.split != 0.5:
-        from .shear_factors import couette_gap
-
-        h_t, dh_t = couette_gap(film, sigma, scene.roughness.split)
-    else:
-        h_t, dh_t = expected_gap(film, sigma), expected_gap_slope(film, sigma)
+    h_t, dh_t = _content_law(model)(film)
     if slopes:
-        return h_t, k, np.where(held, 0.0, dh_t), np.where(held, 0.0, dk)
+        return h_t, k, np.where(held, 0.0, dh_t), dk
     return h_t, k
+
+
+def fluid_faces(model: Model, film: np.ndarray):
+    """(values, slopes) percolation.FaceFilm of the film on the faces (rough surfaces), or
+    (None, None) for smooth ones (nodal means, reynolds.py)."""
+    if model.contact is None:
+        return None, None
+    from .percolation import face_film
+
+    return face_film(film, _coefficient_law(model), _content_law(model))
 
 
 def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, reuse=None) -> State:
@@ -200,7 +227,9 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
             from .reynolds import solve_reynolds
 
             solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds")
-        reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse)
+        faces, _ = fluid_faces(model, film)
+        reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse,
+                               faces=faces)
         fluid_pressure = reynolds.pressure
     return State(
         z=z,
@@ -234,7 +263,11 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
     if state.contact_slope is not None:
         gradient += state.contact_slope * model.mesh.nodal_area
     if state.reynolds is not None:
-        _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+        _, face_slopes = fluid_faces(model, state.film)
+        if face_slopes is not None:  # rough surfaces: the film on the faces (percolation.py)
+            gap_slope, coefficient_slope = None, face_slopes
+        else:
+            _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
         gradient += state.reynolds.load_sensitivity(model.mesh, gap_slope, coefficient_slope, model.scene.operating.speed)
     return gradient
 
@@ -275,7 +308,7 @@ def balance_force(model: Model, delta: np.ndarray, z_guess: float | None, tolera
         if abs(error) <= ftol:
             return state, -slope
         if step is None:
-            step = abs(error) / stiffness_guess if stiffness_guess else scale
+            step = abs(error) / stiffness_guess if stiffness_guess and stiffness_guess > 0.0 else scale
         if error > 0.0:
             below = z
         else:
