@@ -124,10 +124,13 @@ def _check_fields(mesh, expected_gap, coefficient):
         raise ValueError(f"Poiseuille coefficient must be >= 0; min {coefficient.min():.3g}")
 
 
-def reynolds_system(mesh, expected_gap, coefficient, speed) -> ReynoldsSystem:
+def reynolds_system(mesh, expected_gap, coefficient, speed, squeeze_rate=None) -> ReynoldsSystem:
     """Assemble the finite-volume Reynolds equation (Eq. 1) without loops over nodes.
 
     expected_gap = h_T (ny, nx) m, coefficient = k (ny, nx) m^3/(Pa s), speed = U m/s.
+    ``squeeze_rate``: dh_T/dt (ny, nx) m/s of a transient (physics.md section 14): each
+    cell's volume changes by dA dh_T/dt, so its net outflow is w = A p - b + dA dh_T/dt
+    (the squeeze term of the time-dependent Reynolds equation); None: steady.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
@@ -157,6 +160,8 @@ def reynolds_system(mesh, expected_gap, coefficient, speed) -> ReynoldsSystem:
     couette = _couette_face_flux(mesh, expected_gap, speed)
     outflow = np.zeros(mesh.shape)
     outflow[:, 1:-1] = couette[:, 1:] - couette[:, :-1]
+    if squeeze_rate is not None:
+        outflow += mesh.nodal_area * squeeze_rate
     return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown)
 
 
@@ -274,7 +279,7 @@ def _interpolate(field, source, target):
     return along(along(field, source.x, target.x, 1), source.y, target.y, 0)
 
 
-def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations):
+def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations, squeeze_rate=None):
     """Cavitated set guessed from the solution on the coarser mesh (nested iteration).
 
     A cavitated node only learns that it should carry pressure from a pressurised neighbour,
@@ -288,6 +293,7 @@ def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations
         _interpolate(coefficient, mesh, coarse),
         speed,
         max_iterations=max_iterations,
+        squeeze_rate=None if squeeze_rate is None else _interpolate(squeeze_rate, mesh, coarse),
     )
     return _interpolate(solution.pressure, coarse, mesh) <= 0.0
 
@@ -309,13 +315,13 @@ def _active_set(matrix, rhs, cavitated, max_steps, factors=None):
     return p, cavitated, steps, repeated, factor
 
 
-def _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations):
+def _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate=None):
     """Cavitated set to start from without a warm start: from the solution on a mesh with half
     the nodes (recursively), and on the coarsest mesh the nodes where the gap diverges."""
     coarse = _coarser(mesh)
     if coarse is None:
         return system.rhs < 0.0
-    return _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations)[system.unknown]
+    return _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations, squeeze_rate)[system.unknown]
 
 
 def _reusable(mesh, system, first_free, reuse):
@@ -330,7 +336,7 @@ def _reusable(mesh, system, first_free, reuse):
 
 
 def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
-                   cavitated_guess=None, max_iterations=100, reuse=None) -> ReynoldsSolution:
+                   cavitated_guess=None, max_iterations=100, reuse=None, squeeze_rate=None) -> ReynoldsSolution:
     """Fluid pressure of Eq. (1) with p = 0 on the boundary.
 
     cavitation=True: Reynolds (Swift-Stieber) condition by the primal-dual active-set method.
@@ -342,12 +348,13 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     ``reuse``: the solution of a nearby problem on the same mesh (the previous evaluation of
     a coupled iteration); when the first linear solve is on its pressurised set, it runs by
     CG preconditioned with its LU factors (BlockInverse) instead of a new factorisation.
+    ``squeeze_rate``: dh_T/dt (ny, nx) m/s of a transient step (reynolds_system).
     """
     if max_iterations < 1:
         raise ValueError(f"max_iterations must be >= 1, got {max_iterations}")
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
-    system = reynolds_system(mesh, expected_gap, coefficient, speed)
+    system = reynolds_system(mesh, expected_gap, coefficient, speed, squeeze_rate)
     matrix, rhs = system.matrix, system.rhs
     if not cavitation:
         cavitated = np.zeros(rhs.size, dtype=bool)
@@ -361,7 +368,7 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
                 matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), _reusable(mesh, system, ~warm, reuse)
             )
         if not repeated and iterations < max_iterations:
-            cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations)
+            cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate)
             p, cavitated, steps, repeated, factor = _active_set(matrix, rhs, cold, max_iterations - iterations)
             iterations += steps
     residual = _relative_residual(matrix, rhs, p, cavitated, cavitation)
@@ -402,7 +409,7 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed) -> float:
     return float(total)
 
 
-def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed) -> np.ndarray:
+def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeeze_coefficient=0.0) -> np.ndarray:
     """dW/dh_j, N/m (ny, nx): how the fluid load W = sum_i p_i dA_i changes with the film at
     node j, at the solution's active set, by the adjoint method (one more solve with A_FF:
     a back-substitution with the LU factors the solve left, or a few CG steps when it
@@ -416,6 +423,9 @@ def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed) -> np.
     dh_T/dh and ``coefficient_slope`` = dk/dh are nodal (ny, nx). The cavitated set moves
     with h too, but where it meets the pressurised set p = 0 and grad p = 0 (Reynolds
     condition), so that motion does not change W to first order.
+    ``squeeze_coefficient`` (1/s): d(dh_T/dt)/dh_T of a transient step's time discretisation
+    (reynolds_system's squeeze_rate); the cell term dA_j dh_T,j/dt adds
+    lambda_j dA_j squeeze_coefficient to dr/dh_T,j.
     """
     sensitivity = np.zeros(mesh.shape)
     if solution.factor is None:
@@ -436,4 +446,6 @@ def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed) -> np.
     face_y = 0.5 * (mesh.dx / mesh.dy) * (adjoint[:-1, :] - adjoint[1:, :]) * (p[:-1, :] - p[1:, :])
     coefficient_part[:-1, :] += face_y
     coefficient_part[1:, :] += face_y
+    if squeeze_coefficient:
+        couette_part += squeeze_coefficient * mesh.nodal_area * adjoint
     return -(np.asarray(coefficient_slope) * coefficient_part + np.asarray(gap_slope) * couette_part)

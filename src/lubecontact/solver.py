@@ -64,6 +64,9 @@ class Model:
     contact: object | None  # RoughContact when effects.asperity_contact
     deformation: object | None  # ElasticDeformation when effects.elastic_deformation
     hydrodynamic: bool  # Reynolds solved (effect on and speed > 0)
+    # A transient step's time derivative of h_T (unsteady.integrator.Squeeze: rate(h_T) m/s,
+    # coefficient = d rate/d h_T 1/s, film_scale m), None for a steady solve
+    squeeze: object | None = None
 
     @classmethod
     def assemble(cls, scene, mesh: Mesh | None = None, contact=None) -> "Model":
@@ -90,8 +93,12 @@ class Model:
 
     def coarsened(self) -> "Model | None":
         """The same model on the mesh with every other node (same domain) in each direction
-        longer than NESTED_COARSEST nodes; None when there is none."""
+        longer than NESTED_COARSEST nodes; None when there is none, or for a transient step
+        (its squeeze history lives on this mesh; it starts from the previous step)."""
         from .reynolds import _coarser
+
+        if self.squeeze is not None:
+            return None
 
         coarse = _coarser(self.mesh, NESTED_COARSEST)
         return None if coarse is None else Model.assemble(self.scene, coarse, self.contact)
@@ -178,7 +185,7 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
         h_t, k = fluid_film(model, film)
         reynolds = solve_reynolds(
             mesh, h_t, k, scene.operating.speed, cavitation=scene.effects.cavitation, cavitated_guess=cavitated_guess,
-            reuse=reuse,
+            reuse=reuse, squeeze_rate=None if model.squeeze is None else model.squeeze.rate(h_t),
         )
         fluid_pressure = reynolds.pressure
     return State(
@@ -200,6 +207,8 @@ def _film_scale(model: Model) -> float:
     """A length on which the force changes appreciably: sigma, or a rigid Martin film."""
     if model.contact is not None:
         return model.contact.sigma
+    if model.squeeze is not None:
+        return model.squeeze.film_scale
     from .effects import martin_film
 
     return martin_film(model.scene)
@@ -225,7 +234,7 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
         h_t, k = fluid_film(model, state.film + step)
         gradient += load_sensitivity(
             model.mesh, state.reynolds, (h_t - state.expected_gap) / step, (k - state.flow_coefficient) / step,
-            model.scene.operating.speed,
+            model.scene.operating.speed, 0.0 if model.squeeze is None else model.squeeze.coefficient,
         )
     return gradient
 
@@ -299,8 +308,11 @@ def contact_newton_step(model: Model, state: State, residual: np.ndarray) -> np.
     (D = -dp_c/dh >= 0, w = nodal area) and eliminating the rigid shift dz gives
         step + K(D (step - <step>)) = residual,   <step> = sum(w D step) / sum(w D),
     solved matrix-free by GMRES with the FFT influence operator. Without asperity contact
-    the step is the plain fixed-point step.
+    the step is the plain fixed-point step. A transient step adds the squeeze film's stiffness
+    (model.squeeze.newton_step), which at short time steps dwarfs the contact's.
     """
+    if model.squeeze is not None and state.reynolds is not None:
+        return model.squeeze.newton_step(model, state, residual)
     if model.contact is None:
         return residual
     stiffness = -state.contact_slope  # >= 0, Pa/m
