@@ -164,3 +164,40 @@ def test_reconnect_time_and_oscillation_metrics_from_series():
     assert math.isnan(reconnect_time(t, r, None, 10.0))
     fraction, peaks = oscillation_metrics(t, np.array([0.5, 2.0, 0.5, 3.0, 0.1]), 2.0, 2, 1.0)
     assert fraction == pytest.approx(0.5) and peaks.tolist() == [2.0, 3.0]
+
+
+def test_slow_oscillation_peaks_at_the_steady_resistance_of_its_peak_speed():
+    # quasi-static limit: at 2 Hz the film (ms response) follows U(t); peak U = 2 pi f A = 1 m/s
+    base = {"mesh.ny": 1, "mesh.nx": 31, "effects.elastic_deformation": False}
+    ds = lc.transient(scene(base, **{"motion.kind": "oscillation", "motion.frequency": 2.0, "motion.cycles": 1,
+                                     "motion.amplitude": 1 / (4 * math.pi), "motion.duration": 0.6}))
+    steady = lc.solve(scene(base, **{"operating.speed": 1.0}))["contact_resistance"].item()
+    assert ds["converged"].item() == 1 and ds["peak_resistance"].size == 1
+    assert ds["peak_resistance"].item() == pytest.approx(steady, rel=0.01)
+    assert ds["open_fraction"].item() == 0.0  # Table 1 stays far below the 1 ohm threshold
+    assert ds["contact_resistance"].values[-1] == pytest.approx(ds["rest_resistance"].item(), rel=1e-3)
+
+
+def test_cli_transient_writes_the_series_and_exits_3_when_a_step_fails(tmp_path, capsys):
+    import xarray as xr
+
+    from lubecontact.cli import main
+
+    common = ["transient", TABLE1, "--set", "mesh.ny=1", "--set", "mesh.nx=31", "--set", "motion.kind=stop",
+              "--set", "motion.duration=0.02", "--set", "operating.speed=1.0", "--set", "motion.tolerance=1e-2"]
+    out = tmp_path / "series.nc"
+    assert main(common + ["--out", str(out)]) == 0
+    assert "reconnect_time" in capsys.readouterr().out
+    with xr.open_dataset(out) as ds:
+        assert ds["time"].attrs["units"] == "s" and ds["reconnect_time"].attrs["units"] == "s"
+        assert all("units" in ds[name].attrs and "long_name" in ds[name].attrs for name in ds.data_vars)
+        assert ds.attrs["scene_hash"] == lc.load_scene(TABLE1, {
+            "mesh.ny": 1, "mesh.nx": 31, "motion.kind": "stop", "motion.duration": 0.02, "operating.speed": 1.0,
+            "motion.tolerance": 1e-2}).hash
+        assert 0.0 < ds["reconnect_time"].item() < 0.02
+    failed = tmp_path / "failed.nc"
+    assert main(common + ["--set", "solver.max_iterations=1", "--out", str(failed)]) == 3
+    with xr.open_dataset(failed) as ds:
+        assert ds["converged"].item() == 0 and "NOT CONVERGED" in ds.attrs["notes"]
+    assert main(common + ["--set", "motion.kind=spin", "--out", str(tmp_path / "bad.nc")]) == 2
+    assert not (tmp_path / "bad.nc").exists()

@@ -1,4 +1,4 @@
-"""Command line: ``lubecontact solve|sweep|show``. Exit codes: 0 converged, 2 bad input,
+"""Command line: ``lubecontact solve|sweep|transient|show``. Exit codes: 0 converged, 2 bad input,
 3 not converged (the file is still written, with converged = 0)."""
 
 from __future__ import annotations
@@ -28,6 +28,10 @@ def _parser() -> argparse.ArgumentParser:
     sweep.add_argument("--speeds", required=True,
                        help="comma list in m/s (0.001,0.01,0.1) or log range START:STOP:N (1e-4:10:25)")
     sweep.add_argument("--out", required=True, help="output netCDF file")
+
+    transient = sub.add_parser("transient", help="follow the scene's motion: (stop, start, oscillation, table) in time")
+    scene_args(transient)
+    transient.add_argument("--out", required=True, help="output netCDF file (time series)")
 
     show = sub.add_parser("show", help="validate a scene and print its canonical form and hash")
     scene_args(show)
@@ -86,6 +90,10 @@ def main(argv=None) -> int:
         from .solver import solve
 
         ds = solve(scene, fields=args.fields)
+    elif args.command == "transient":
+        from .unsteady.cli import run_transient
+
+        return run_transient(scene, args.out)
     else:
         from .speed_sweep import sweep
 

@@ -187,6 +187,7 @@ class TimeIntegrator:
         from tqdm.auto import tqdm
 
         history = self.history
+        self.wall_time = 0.0
         levels = [self.start()]
         if not levels[0].diagnostics["converged"]:
             return levels, "the steady start did not converge: " + levels[0].diagnostics["failure"]
