@@ -20,6 +20,7 @@ include: "workflow/rules/solve.smk"
 include: "workflow/rules/collect.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/accuracy.smk"
+include: "workflow/rules/transient.smk"
 
 
 localrules:
@@ -28,6 +29,7 @@ localrules:
     plot,
     accuracy_table,
     accuracy_figure,
+    transient_figure,
 
 
 rule all:
@@ -35,4 +37,5 @@ rule all:
         expand("results/figures/{figure}.{ext}", figure=FIGURES, ext=["png", "pdf"]),
         expand("results/figures/accuracy_cost.{ext}", ext=["png", "pdf"]),
         "results/data/accuracy_cost.md",
+        expand("results/figures/{figure}.{ext}", figure=TRANSIENT_FIGURES, ext=["png", "pdf"]),
     default_target: True

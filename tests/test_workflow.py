@@ -80,6 +80,10 @@ def edited(path: Path, old: str, new: str):
 
 # the accuracy_cost study (workflow/rules/accuracy.smk): one timed solve job, table, figure
 ACCURACY = {"accuracy_solve": 1, "accuracy_table": 1, "accuracy_figure": 1}
+# the transient figures (workflow/rules/transient.smk, config/transient.yaml): test.yaml has
+# 2 stop curves (Table 1, mu = 0.3), the same 2 cases as the reconnect chart, 1 vibration
+TRANSIENT = {"transient_case": 3, "transient_figure": 3}
+TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_vibration"]
 
 
 # --- plans and lint (no solving) ---------------------------------------------------------------
@@ -94,7 +98,7 @@ def fresh(tmp_path_factory):
 def test_tiny_config_plans_every_figure(fresh):
     # test.yaml: 5 grids of 2 curves on the same coarse mesh, each with the base value, so
     # the baseline curve is shared: 1 + 5 curves = 6 jobs of 4 speeds; 9 figures.
-    assert planned(fresh, *TINY) == Counter(solve=6, collect=9, plot=9, all=1, **ACCURACY)
+    assert planned(fresh, *TINY) == Counter(solve=6, collect=9, plot=9, all=1, **ACCURACY, **TRANSIENT)
 
 
 @pytest.mark.slow
@@ -102,7 +106,9 @@ def test_default_grids(fresh):
     # fig03: 7 meshes up to 201^2 (51^2 is the baseline); fig04: 4 sigma, fig06: 4 radii,
     # fig10: 4 viscosities, each with the baseline; fig08: 5 forces with the baseline;
     # fig05/07/09/11 reuse those grids: 7 + 3 + 3 + 4 + 3 = 20 curves of 26 speeds.
-    assert planned(fresh) == Counter(solve=20, collect=9, plot=9, all=1, **ACCURACY)
+    # transient: 5 stop curves + 7 viscosities x 3 forces, 3 of them stop curves, + 1 vibration
+    transient = {"transient_case": 5 + 21 - 3 + 1, "transient_figure": 3}
+    assert planned(fresh) == Counter(solve=20, collect=9, plot=9, all=1, **ACCURACY, **transient)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
     cases = {c for g in grid.expand_all(specs, ROOT).values() for c in g.unique_cases()}
@@ -173,8 +179,24 @@ def test_physical_trends(built):
 
 
 @pytest.mark.slow
+def test_transient_cases_have_units_and_reconnect(built):
+    cases = sorted((built / "results" / "transient").glob("*.nc"))
+    assert len(cases) == 3
+    for path in cases:
+        ds = xr.load_dataset(path)
+        assert ds.attrs["scene_hash"] == path.stem and ds["converged"].item() == 1
+        for name, var in ds.variables.items():
+            assert var.attrs.get("units") and var.attrs.get("long_name"), (path.stem, name)
+        kind = yaml.safe_load(ds.attrs["scene"])["motion"]["kind"]
+        if kind == "stop":  # Table 1 and mu = 0.3 Pa s reconnect within the 50 ms run
+            assert 0.0 < ds["reconnect_time"].item() < 0.05
+        else:
+            assert ds["peak_resistance"].size == 1 and 0.0 <= ds["open_fraction"].item() <= 1.0
+
+
+@pytest.mark.slow
 def test_figures_are_images(built):
-    for figure in FIGURES:
+    for figure in FIGURES + TRANSIENT_FIGURES:
         png = built / "results" / "figures" / f"{figure}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         height, width, _ = imread(png).shape
