@@ -18,8 +18,11 @@ model) warm-started from the extrapolated film of the last steps.
 Error control (Milne's device): the film predicted by polynomial extrapolation through the
 last p + 1 levels and the BDF_p result differ by (P_p - D_p/c0) h^{(p+1)}, of which the
 BDF's local error is -D_p/c0 h^{(p+1)}; both constants are computed for the actual steps
-(error_fraction). A step is accepted when that estimate is below ``tolerance`` times
-max(|h|, floor) at every node (floor: sigma with roughness, FILM_FLOOR without), and the
+(error_fraction). A step is accepted when that estimate, node by node relative to
+``tolerance`` times max(|h|, floor) (floor: sigma with roughness, FILM_FLOOR without), has
+a root mean square over the nodes below 1 (the weighted RMS norm of ODE codes such as
+SUNDIALS: a kink in one node's history, where its film crosses the fluid's floor at h = 0,
+does not force the whole contact to tiny steps), and the
 next step is scaled by 0.9 E^{-1/(p+1)} within [SHRINK, GROWTH]: steps are short while the
 film moves and grow geometrically (log-spaced) as it settles. Steps land on the motion's
 breakpoints.
@@ -177,8 +180,10 @@ class TimeIntegrator:
         predicted = _extrapolate(times, [lv.state.film for lv in used], t_new)
         fraction = error_fraction([dt] + [lv.time - lv_prev.time for lv, lv_prev in zip(used[::-1], used[::-1][1:])])
         weight = self.tolerance * np.maximum(np.abs(state.film), self.floor)
-        error = float(np.max(fraction * np.abs(state.film - predicted) / weight))
+        error = float(np.sqrt(np.mean((fraction * (state.film - predicted) / weight) ** 2)))
         gap = self._gap(model, state.film)
+        if state.reynolds is not None:
+            state.reynolds.factor = None  # LU factors: not needed after the step, megabytes each
         level = Level(t_new, speed, state, gap, model, diag, order, error, model.squeeze.rate(gap))
         return level, error
 
