@@ -48,9 +48,12 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         ])
     if progress is None:
         progress = sys.stderr.isatty()
-    integrator = TimeIntegrator(scene, history)
-    levels, failure = integrator.run(progress)
-    rest = _rest_resistance(integrator)
+    from ..solver import _blas_controller
+
+    with _blas_controller().limit(limits=1, user_api="blas"):  # one BLAS thread, as solve()
+        integrator = TimeIntegrator(scene, history)
+        levels, failure = integrator.run(progress)
+        rest = _rest_resistance(integrator)
     threshold = open_resistance(scene)
     series_t = np.array([lv.time for lv in levels])
     notes = []
