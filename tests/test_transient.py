@@ -201,3 +201,27 @@ def test_cli_transient_writes_the_series_and_exits_3_when_a_step_fails(tmp_path,
         assert ds["converged"].item() == 0 and "NOT CONVERGED" in ds.attrs["notes"]
     assert main(common + ["--set", "motion.kind=spin", "--out", str(tmp_path / "bad.nc")]) == 2
     assert not (tmp_path / "bad.nc").exists()
+
+
+def test_gallery_stops_grease_waits_far_longer_than_oil():
+    # the two stop scenes of config/scenes, as rigid coarse line contacts: same contact and
+    # film-forming history scaled by mu; after the stop the squeeze time scales with mu
+    coarse = {"mesh.nx": 31, "mesh.ny": 1, "effects.elastic_deformation": False, "motion.tolerance": 1e-2}
+    oil = lc.transient(lc.load_scene("config/scenes/stop_hydrocarbon_oil.yaml", coarse))
+    grease = lc.transient(lc.load_scene("config/scenes/stop_grease.yaml", coarse))
+    assert oil["converged"].item() == grease["converged"].item() == 1
+    ratio = grease["reconnect_time"].item() / oil["reconnect_time"].item()
+    assert 10.0 < ratio < 10.0 / 0.087 * 3
+
+
+def test_start_settles_at_the_steady_sliding_state_and_a_table_matches_it():
+    base = {"mesh.nx": 31, "mesh.ny": 1, "effects.elastic_deformation": False, "motion.duration": 0.05,
+            "motion.tolerance": 1e-2}
+    start = lc.transient(scene(base, **{"motion.kind": "start", "motion.speed": 1.0, "motion.ramp": 1e-3}))
+    table = lc.transient(scene(base, **{"motion.kind": "table", "motion.table": [[0.0, 0.0], [1e-3, 1.0]]}))
+    sliding = lc.solve(scene(base, **{"operating.speed": 1.0}))
+    assert start["converged"].item() == 1 and start["contact_resistance"].values[0] == pytest.approx(
+        start["rest_resistance"].item(), rel=1e-6)
+    assert start["contact_resistance"].values[-1] == pytest.approx(sliding["contact_resistance"].item(), rel=1e-3)
+    assert math.isnan(start["reconnect_time"].item())
+    np.testing.assert_allclose(table["contact_resistance"].values, start["contact_resistance"].values, rtol=1e-9)
