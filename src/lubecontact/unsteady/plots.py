@@ -86,6 +86,12 @@ def vibration_figure(ds, title: str) -> Figure:
     bottom.set_ylabel("contact resistance (\u03a9)")
     bottom.set_xlabel("time (s)")
     bottom.legend(fontsize=8)
+    import yaml
+
+    scene = yaml.safe_load(ds.attrs["scene"])
+    motion = scene["motion"]
+    details = (f"amplitude {motion['amplitude'] * 1e3:g} mm at {motion['frequency']:g} Hz, "
+               f"\u03bc = {scene['lubricant']['viscosity']:g} Pa s, F = {scene['operating']['force']:g} N")
     fraction = float(ds["open_fraction"])
-    top.set_title(f"{title}\nopen {100 * fraction:.0f} % of the oscillation time", fontsize=9)
+    top.set_title(f"{title}: {details}\nopen {100 * fraction:.0f} % of the oscillation time", fontsize=9)
     return fig
