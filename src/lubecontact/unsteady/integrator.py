@@ -44,7 +44,7 @@ import numpy as np
 
 from ..solver import Model, SolveError, coupled_solve, fluid_film
 
-FIRST_STEP = 1.0e-9  # s: first step, and the first step after a breakpoint of U(t)
+FIRST_STEP = 1.0e-9  # s: first step from the steady start
 GROWTH, SHRINK, SAFETY = 4.0, 0.2, 0.9  # step-size controller limits
 FILM_FLOOR = 1.0e-10  # m: error floor of a smooth film (relative error above it)
 MIN_STEP = 1.0e-15  # s: below this a failing step ends the run, flagged
@@ -227,7 +227,11 @@ class TimeIntegrator:
                 bar.update(t_new - t)
                 bar.set_postfix_str(f"dt = {t_new - t:.2g} s, steps {len(levels) - 2}")
                 if t_new == target and target in breaks[:-1]:
-                    dt, order = FIRST_STEP, 1  # U(t) is not smooth here: start short, at first order
+                    # U(t) is not smooth here: first order, from the last step's size (not
+                    # FIRST_STEP: a tiny step makes the squeeze film stiff beyond what the
+                    # coupled iteration resolves; the error control shortens it if needed)
+                    order = 1
+                    dt = t_new - t
                 else:
                     dt, order = (t_new - t) * min(GROWTH, max(SHRINK, factor)), 2
         if not failure and levels[-1].time < history.end:
