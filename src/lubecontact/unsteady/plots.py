@@ -5,7 +5,8 @@ time after the motion stops) for several variants of one contact; the resting re
 times the reconnect factor as a dotted line, the reconnect time as a marker.
 (b) ``reconnect_figure``: reconnect time against a swept parameter (log-log), one line per
 series value; a run that never reconnected within its duration is drawn as a triangle on
-the top edge, a run that did not converge as a red cross.
+the top edge, one already reconnected when the block stopped (reconnect_time = 0) as a
+triangle on the bottom edge, a run that did not converge as a red cross.
 (c) ``vibration_figure``: speed and resistance over the cycles with the open threshold.
 Library code: matplotlib's object API, no files read.
 """
@@ -53,21 +54,26 @@ def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str)
     """points: {"x", "series", "label", "ds"} of the design chart."""
     fig = Figure(figsize=(6.5, 4.5), layout="constrained")
     ax = fig.subplots()
-    finite = [float(p["ds"]["reconnect_time"]) for p in points if math.isfinite(float(p["ds"]["reconnect_time"]))]
+    finite = [t for p in points if math.isfinite(t := float(p["ds"]["reconnect_time"])) and t > 0]
     top = max(finite) * 3 if finite else 1.0
+    bottom = min(finite) / 3 if finite else 1e-3
     for i, series in enumerate(sorted({p["series"] for p in points})):
         line = sorted((p for p in points if p["series"] == series), key=lambda p: p["x"])
         x = np.array([p["x"] for p in line])
         y = np.array([float(p["ds"]["reconnect_time"]) for p in line])
         ok = np.array([int(p["ds"]["converged"]) == 1 for p in line])
         color = f"C{i}"
-        ax.loglog(x[np.isfinite(y) & ok], y[np.isfinite(y) & ok], "o-", color=color, label=line[0]["label"])
+        drawn = np.isfinite(y) & (y > 0) & ok
+        ax.loglog(x[drawn], y[drawn], "o-", color=color, label=line[0]["label"])
         never = ~np.isfinite(y) & ok
         ax.plot(x[never], np.full(never.sum(), top), "^", color=color)
+        already = (y == 0) & ok
+        ax.plot(x[already], np.full(already.sum(), bottom), "v", color=color)
         ax.plot(x[~ok], np.where(np.isfinite(y[~ok]), y[~ok], top), "x", color="red", ms=9)
     ax.set_xlabel(f"{x_label} ({x_units})")
     ax.set_ylabel("reconnect time (s)")
-    ax.set_title(title + "\ntriangles: not reconnected within the run; red crosses: not converged", fontsize=9)
+    ax.set_title(title + "\n\u25b2 not within the run; \u25bc before the block stopped; red \u00d7 not converged",
+                 fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     return fig
