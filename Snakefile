@@ -27,6 +27,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/surfaces.smk"
 include: "workflow/rules/report.smk"
+include: "workflow/rules/transient.smk"
 
 
 localrules:
@@ -36,6 +37,7 @@ localrules:
     accuracy_table,
     accuracy_figure,
     surfaces_psd,
+    transient_figure,
 
 
 # Every product is a target, intermediates included: a case or data file deleted (or moved
@@ -51,4 +53,6 @@ rule all:
         f"{RESULTS}/accuracy/study.nc",
         ALL_CASES.values(),
         expand(f"{RESULTS}/figures/surfaces_psd.{{ext}}", ext=["png", "pdf"]) if SURFACE_FILES else [],
+        expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=TRANSIENT_FIGURES, ext=["png", "pdf"]),
+        expand(f"{RESULTS}/transient/{{case}}.nc", case=TRANSIENT_OVERRIDES),
     default_target: True

@@ -45,7 +45,7 @@ def test_scene_solves_and_balances_its_load(solved, name):
     assert 0.0 <= ds["friction_coefficient"].item() < 1.0
     resistance = ds["contact_resistance"].item()
     assert resistance > 0.0
-    assert (resistance == float("inf")) == (ds["open_circuit"].item() == 1)
+    assert (resistance > scene.interface.open_resistance) == (ds["open_circuit"].item() == 1)
 
 
 def test_dry_static_is_carried_by_the_asperities_alone(solved):

@@ -83,6 +83,10 @@ def edited(path: Path, old: str, new: str):
 ACCURACY = {"accuracy_solve": 1, "accuracy_table": 1, "accuracy_figure": 1}
 # the measured surfaces' spectra (workflow/rules/surfaces.smk)
 SURFACES = {"surfaces_psd": 1}
+# the transient figures (workflow/rules/transient.smk, config/transient.yaml): test.yaml has
+# 2 stop curves (Table 1, mu = 0.3), the same 2 cases as the reconnect chart, 1 vibration
+TRANSIENT = {"transient_case": 3, "transient_figure": 3}
+TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_vibration"]
 
 
 # --- plans and lint (no solving) ---------------------------------------------------------------
@@ -99,8 +103,8 @@ def test_tiny_config_plans_every_figure(fresh):
     # baseline curve is shared: 1 + 5 + 1 curves; fig04_measured: 2 surfaces: 9 jobs of 4
     # speeds. With the full electrical path (fig04p-10p): 1 + 4 curves; fig12: 2 x 2 curves
     # of 3 speeds, one of them 3 of the 4 cases of fig08p's 10 N curve (the figure planned
-    # first claims them, the other keeps its own: one job more): 4 jobs; 16 figures.
-    assert planned(fresh, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY, **SURFACES)
+    # first claims them, the other keeps its own: one job more): 4 jobs; 16 figures; the transient cases and figures.
+    assert planned(fresh, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **TRANSIENT)
 
 
 @pytest.mark.slow
@@ -110,7 +114,9 @@ def test_default_grids(fresh):
     # fig05/07/09/11 reuse those grids: 7 + 3 + 3 + 4 + 3 = 20 curves; fig04_alpha: 4 (sigma,
     # R_peak) pairs with the baseline, fig04_measured: 2 surfaces: 25 curves of 26 speeds;
     # the full path (fig04p-10p) 1 + 3 + 3 + 4 + 3 = 14 curves of 26 speeds; fig12: 16 curves of 10.
-    assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES)
+    # transient: 5 stop curves + 7 viscosities x 3 forces, 3 of them stop curves, + 1 vibration
+    transient = {"transient_case": 5 + 21 - 3 + 1, "transient_figure": 3}
+    assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
     cases = {c for g in grid.expand_all(specs, ROOT).values() for c in g.unique_cases()}
@@ -185,8 +191,24 @@ def test_physical_trends(built):
 
 
 @pytest.mark.slow
+def test_transient_cases_have_units_and_reconnect(built):
+    cases = sorted((built / "results" / "test" / "transient").glob("*.nc"))
+    assert len(cases) == 3
+    for path in cases:
+        ds = xr.load_dataset(path)
+        assert ds.attrs["scene_hash"] == path.stem and ds["converged"].item() == 1
+        for name, var in ds.variables.items():
+            assert var.attrs.get("units") and var.attrs.get("long_name"), (path.stem, name)
+        kind = yaml.safe_load(ds.attrs["scene"])["motion"]["kind"]
+        if kind == "stop":  # Table 1 and mu = 0.3 Pa s reconnect within the 50 ms run
+            assert 0.0 < ds["reconnect_time"].item() < 0.05
+        else:
+            assert ds["peak_resistance"].size == 1 and 0.0 <= ds["open_fraction"].item() <= 1.0
+
+
+@pytest.mark.slow
 def test_figures_are_images(built):
-    for figure in FIGURES + ["surfaces_psd"]:
+    for figure in FIGURES + ["surfaces_psd"] + TRANSIENT_FIGURES:
         png = built / "results" / "test" / "figures" / f"{figure}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         height, width, _ = imread(png).shape
@@ -216,8 +238,8 @@ def test_one_grid_value_solves_one_curve(built):
 @pytest.mark.slow
 def test_solver_change_resolves_every_case_and_content_decides(built):
     solver = built / "src" / "lubecontact" / "solver.py"
-    with edited(solver, '"""', '"""Edited. '):
-        assert planned(built, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY)
+    with edited(solver, '"""', '"""Edited. '):  # the transient cases run the solver too
+        assert planned(built, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY, **TRANSIENT)
     # restored: newer time stamp, same content -> nothing to do
     assert planned(built, *TINY) == Counter()
 

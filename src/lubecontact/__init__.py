@@ -1,6 +1,6 @@
 """lubecontact: lubricated, sliding, rough electrical contacts (after Jackson & Angadi 2022).
 
-Public surface (see DESIGN.md): ``load_scene``, ``solve``, ``sweep``, ``rough_contact``.
+Public surface (see DESIGN.md): ``load_scene``, ``solve``, ``sweep``, ``rough_contact``, ``transient``.
 """
 
 from importlib.metadata import PackageNotFoundError, version
@@ -10,7 +10,7 @@ try:
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-__all__ = ["__version__", "load_scene", "solve", "sweep", "rough_contact", "SceneError"]
+__all__ = ["__version__", "load_scene", "solve", "sweep", "rough_contact", "SceneError", "transient"]
 
 
 def __getattr__(name):
@@ -32,4 +32,8 @@ def __getattr__(name):
         from .rough_surface import rough_contact
 
         return rough_contact
+    if name == "transient":
+        from .unsteady import transient
+
+        return transient
     raise AttributeError(f"module 'lubecontact' has no attribute {name!r}")

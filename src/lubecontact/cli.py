@@ -1,4 +1,4 @@
-"""Command line: ``lubecontact solve|sweep|show|roughness``. Exit codes: 0 converged; 2 bad input
+"""Command line: ``lubecontact solve|sweep|transient|show|roughness``. Exit codes: 0 converged; 2 bad input
 (scene, option, --out path, a solve too big for this machine: nothing is solved or written);
 3 no converged result (not converged: the file is still written, with converged = 0; or
 the file could not be written); 130 interrupted (nothing written); 1 internal error (a bug:
@@ -34,6 +34,10 @@ def _parser() -> argparse.ArgumentParser:
                        help="comma list in m/s (0.001,0.01,0.1) or log range START:STOP:N (1e-4:10:25)")
     sweep.add_argument("--out", required=True, help="output netCDF file (new path or regular file; links are followed)")
     sweep.add_argument("--force-size", action="store_true", help="solve even if the memory estimate exceeds this machine's")
+
+    transient = sub.add_parser("transient", help="follow the scene's motion: (stop, start, oscillation, table) in time")
+    scene_args(transient)
+    transient.add_argument("--out", required=True, help="output netCDF file (time series)")
 
     show = sub.add_parser("show", help="validate a scene and print its canonical form and hash")
     scene_args(show)
@@ -168,6 +172,10 @@ def _run(args) -> int:
 
         with elapsed_bar(est):
             ds = solve(scene, fields=args.fields)
+    elif args.command == "transient":
+        from .unsteady.cli import run_transient
+
+        return run_transient(scene, out)
     else:
         from .speed_sweep import sweep
 

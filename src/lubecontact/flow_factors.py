@@ -158,7 +158,7 @@ def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
     k_valid = poiseuille_coefficient(H_VALID * sigma, sigma, viscosity, flow_factors)
     reference = ndtr(H_VALID) - 0.5
     share = np.clip((ndtr(H) - 0.5) / reference, 0.0, 1.0)
-    share_slope = np.where(H > 0.0, _INV_SQRT_2PI * np.exp(-0.5 * np.minimum(H, H_VALID) ** 2) / reference, 0.0)
+    share_slope = np.where(H > 0.0, _INV_SQRT_2PI * np.exp(-0.5 * np.clip(H, 0.0, H_VALID) ** 2) / reference, 0.0)
     above = H >= H_VALID
     k = np.where(above, upper, k_valid * share)
     slope = np.where(above, upper_slope, k_valid * share_slope / sigma)

@@ -84,9 +84,9 @@ class ReynoldsSolution:
     # no node is pressurised
     factor: object | None = None
 
-    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed) -> np.ndarray:
+    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed, squeeze_slope=None) -> np.ndarray:
         """dW/dh_j (N/m) at this solution: module function load_sensitivity."""
-        return load_sensitivity(mesh, self, gap_slope, coefficient_slope, speed)
+        return load_sensitivity(mesh, self, gap_slope, coefficient_slope, speed, squeeze_slope)
 
 
 @dataclass(frozen=True)
@@ -135,12 +135,15 @@ def _check_fields(mesh, expected_gap, coefficient):
         raise ValueError(f"Poiseuille coefficient must be >= 0; min {coefficient.min():.3g}")
 
 
-def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None) -> ReynoldsSystem:
+def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_rate=None) -> ReynoldsSystem:
     """Assemble the finite-volume Reynolds equation (Eq. 1) without loops over nodes.
 
     expected_gap = h_T (ny, nx) m, coefficient = k (ny, nx) m^3/(Pa s), speed = U m/s;
     ``faces`` (percolation.FaceFilm): k and h_T of the faces instead of nodal means. A node
     whose faces all carry no flow (sealed) is not an unknown and stays at p = 0.
+    ``squeeze_rate``: dh_T/dt (ny, nx) m/s of a transient (physics.md section 14): each
+    cell's volume changes by dA dh_T/dt, so its net outflow is w = A p - b + dA dh_T/dt
+    (the squeeze term of the time-dependent Reynolds equation); None: steady.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
@@ -170,6 +173,8 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None) -> Reyno
     couette = _couette_face_flux(mesh, expected_gap, speed, faces)
     outflow = np.zeros(mesh.shape)
     outflow[:, 1:-1] = couette[:, 1:] - couette[:, :-1]
+    if squeeze_rate is not None:
+        outflow += mesh.nodal_area * squeeze_rate
     return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown)
 
 
@@ -287,7 +292,7 @@ def _interpolate(field, source, target):
     return along(along(field, source.x, target.x, 1), source.y, target.y, 0)
 
 
-def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations):
+def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations, squeeze_rate=None):
     """Cavitated set guessed from the solution on the coarser mesh (nested iteration).
 
     A cavitated node only learns that it should carry pressure from a pressurised neighbour,
@@ -301,6 +306,7 @@ def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations
         _interpolate(coefficient, mesh, coarse),
         speed,
         max_iterations=max_iterations,
+        squeeze_rate=None if squeeze_rate is None else _interpolate(squeeze_rate, mesh, coarse),
     )
     return _interpolate(solution.pressure, coarse, mesh) <= 0.0
 
@@ -322,13 +328,13 @@ def _active_set(matrix, rhs, cavitated, max_steps, factors=None):
     return p, cavitated, steps, repeated, factor
 
 
-def _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations):
+def _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate=None):
     """Cavitated set to start from without a warm start: from the solution on a mesh with half
     the nodes (recursively), and on the coarsest mesh the nodes where the gap diverges."""
     coarse = _coarser(mesh)
     if coarse is None:
         return system.rhs < 0.0
-    return _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations)[system.unknown]
+    return _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations, squeeze_rate)[system.unknown]
 
 
 def _reusable(mesh, system, first_free, reuse):
@@ -343,7 +349,8 @@ def _reusable(mesh, system, first_free, reuse):
 
 
 def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
-                   cavitated_guess=None, max_iterations=100, reuse=None, faces=None) -> ReynoldsSolution:
+                   cavitated_guess=None, max_iterations=100, reuse=None, faces=None,
+                   squeeze_rate=None) -> ReynoldsSolution:
     """Fluid pressure of Eq. (1) with p = 0 on the boundary.
 
     cavitation=True: Reynolds (Swift-Stieber) condition by the primal-dual active-set method.
@@ -357,12 +364,13 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     CG preconditioned with its LU factors (BlockInverse) instead of a new factorisation.
     ``faces`` (percolation.FaceFilm): the film on the faces (reynolds_system); the nested
     cold start on coarser meshes uses the nodal fields.
+    ``squeeze_rate``: dh_T/dt (ny, nx) m/s of a transient step (reynolds_system).
     """
     if max_iterations < 1:
         raise ValueError(f"max_iterations must be >= 1, got {max_iterations}")
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
-    system = reynolds_system(mesh, expected_gap, coefficient, speed, faces)
+    system = reynolds_system(mesh, expected_gap, coefficient, speed, faces, squeeze_rate)
     matrix, rhs = system.matrix, system.rhs
     if not cavitation:
         cavitated = np.zeros(rhs.size, dtype=bool)
@@ -376,7 +384,7 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
                 matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), _reusable(mesh, system, ~warm, reuse)
             )
         if not repeated and iterations < max_iterations:
-            cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations)
+            cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate)
             p, cavitated, steps, repeated, factor = _active_set(matrix, rhs, cold, max_iterations - iterations)
             iterations += steps
     residual = _relative_residual(matrix, rhs, p, cavitated, cavitation)
@@ -395,21 +403,22 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     )
 
 
-def boundary_flux(mesh, solution, expected_gap, coefficient, speed) -> float:
+def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) -> float:
     """Net volumetric outflow of the full-film region, m^3/s: through the domain boundary plus
     into the cavitated region. Zero for a mass-conserving solution.
 
     Evaluated from the face fluxes q_f = T_f (p_left - p_right) + (U/2) h_T,f dy of the faces
     between a pressurised interior node and a node that is not (boundary or cavitated),
     independently of the assembled matrix. Compare it with the inlet flux (U/2) h_T dy.
+    ``faces`` (percolation.FaceFilm): the film on the faces, as the solve used it.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
     _check_fields(mesh, expected_gap, coefficient)
     p = solution.pressure
     full = _interior(mesh.shape, mesh.line) & ~solution.cavitated
-    tx, ty = _face_transmissibilities(mesh, coefficient)
-    qx = tx * (p[:, :-1] - p[:, 1:]) + _couette_face_flux(mesh, expected_gap, speed)
+    tx, ty = _face_transmissibilities(mesh, coefficient, faces)
+    qx = tx * (p[:, :-1] - p[:, 1:]) + _couette_face_flux(mesh, expected_gap, speed, faces)
     qy = ty * (p[:-1, :] - p[1:, :])
     total = 0.0
     for q, left, right in ((qx, full[:, :-1], full[:, 1:]), (qy, full[:-1, :], full[1:, :])):
@@ -417,7 +426,7 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed) -> float:
     return float(total)
 
 
-def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed) -> np.ndarray:
+def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeeze_slope=None) -> np.ndarray:
     """dW/dh_j, N/m (ny, nx): how the fluid load W = sum_i p_i dA_i changes with the film at
     node j, at the solution's active set, by the adjoint method (one more solve with A_FF:
     a back-substitution with the LU factors the solve left, or a few CG steps when it
@@ -431,13 +440,19 @@ def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed) -> np.
     dh_T/dh and ``coefficient_slope`` = dk/dh are nodal (ny, nx). The cavitated set moves
     with h too, but where it meets the pressurised set p = 0 and grad p = 0 (Reynolds
     condition), so that motion does not change W to first order.
+    ``squeeze_slope`` (1/s, nodal): d(dh_T/dt)/dh of a transient step (the time
+    discretisation's coefficient times dh_T/dh; reynolds_system's squeeze_rate); the cell term
+    dA_j dh_T,j/dt adds lambda_j dA_j squeeze_slope_j to dr/dh_j.
     """
     if solution.factor is None:
         return np.zeros(mesh.shape)
     free = _interior(mesh.shape, mesh.line) & ~solution.cavitated
     adjoint = np.zeros(mesh.shape)
     adjoint[free] = solution.factor.solve(mesh.nodal_area[free])
-    return adjoint_sensitivity(mesh, adjoint, solution.pressure, gap_slope, coefficient_slope, speed)
+    sensitivity = adjoint_sensitivity(mesh, adjoint, solution.pressure, gap_slope, coefficient_slope, speed)
+    if squeeze_slope is not None:
+        sensitivity -= adjoint * mesh.nodal_area * squeeze_slope
+    return sensitivity
 
 
 def adjoint_sensitivity(mesh, adjoint, pressure, gap_slope, coefficient_slope, speed, face_content=None):

@@ -395,6 +395,62 @@ class SolverSettings(_Section):
 
 
 @dataclass(frozen=True)
+class _SpeedTable:
+    """Rows (t s, U m/s), times strictly increasing from t = 0: a list of pairs, or the path
+    of a text file with two columns. The canonical form holds the rows, so the table's
+    content (not a file name) enters the case hash."""
+
+    allowed = "a list of [t (s), U (m/s)] rows (or a two-column text file), t increasing from 0"
+
+    def __call__(self, value):
+        if value is None:
+            return None
+        if isinstance(value, str):
+            import numpy as np
+
+            try:
+                value = np.loadtxt(value, ndmin=2).tolist()
+            except (OSError, ValueError) as err:
+                raise _Invalid(f"cannot read the table file ({err})") from None
+        try:
+            rows = tuple((_as_real(t), _as_real(u)) for t, u in value)
+        except (TypeError, ValueError):
+            raise _Invalid("not a list of [t, U] pairs") from None
+        times = [t for t, _ in rows]
+        if len(rows) < 2 or times[0] != 0.0 or any(b <= a for a, b in zip(times, times[1:])):
+            raise _Invalid("needs >= 2 rows, the first at t = 0, times strictly increasing")
+        return rows
+
+    def dump(self, value):
+        return None if value is None else [list(row) for row in value]
+
+
+@dataclass(frozen=True)
+class Motion(_Section):
+    """What the block does in time (DESIGN.md Part II "Time"; lubecontact.transient). The
+    default (steady at operating.speed) is left out of the canonical form, so scenes
+    without ``motion:`` keep their hash."""
+
+    kind: str = _field(
+        "steady", _Choice(("steady", "stop", "start", "oscillation", "table")),
+        "steady | stop (slide, ramp down, rest) | start (ramp up from rest) | oscillation | table",
+    )
+    speed: float | None = _field(None, _AutoOr(_nonnegative("m/s")), "sliding speed before a stop / after a start (auto: operating.speed)")
+    stop_time: float = _field(0.0, _nonnegative("s"), "time the deceleration (stop) begins")
+    ramp: float = _field(1.0e-3, _nonnegative("s"), "duration of the linear deceleration / acceleration")
+    duration: float = _field(10.0, _positive("s"), "simulated time after stop_time (after t = 0 for other kinds)")
+    amplitude: float = _field(1.0e-4, _positive("m"), "oscillation: amplitude of the block's displacement")
+    frequency: float = _field(10.0, _positive("Hz"), "oscillation: frequency")
+    cycles: int = _field(3, _Integer(1), "oscillation: number of cycles, then rest")
+    table: tuple | None = _field(None, _SpeedTable(), "table: rows (t, U), linear in between, the last U after")
+    reconnect_factor: float = _field(2.0, _Real("1", low=1.0), "reconnected when R <= this x the resistance at rest")
+    tolerance: float = _field(1.0e-3, _Real("1", low=0.0, high=0.5), "relative local error of a time step (film)")
+
+    def to_dict(self):
+        return None if self == Motion() else super().to_dict()
+
+
+@dataclass(frozen=True)
 class Scene:
     """One validated physical problem. Build it with ``load_scene``."""
 
@@ -408,10 +464,13 @@ class Scene:
     effects: Effects = field(default_factory=Effects)
     mesh: MeshSettings = field(default_factory=MeshSettings)
     solver: SolverSettings = field(default_factory=SolverSettings)
+    motion: Motion = field(default_factory=Motion)
 
     def to_dict(self) -> dict:
-        """Plain Python types; ``auto`` where the scene says auto."""
-        return {f.name: getattr(self, f.name).to_dict() for f in fields(self)}
+        """Plain Python types; ``auto`` where the scene says auto; default sections that
+        would change old hashes (``motion``) left out."""
+        sections = {f.name: getattr(self, f.name).to_dict() for f in fields(self)}
+        return {name: value for name, value in sections.items() if value is not None}
 
     def canonical_yaml(self) -> str:
         """Sorted keys, every default filled, floats written from repr(float): equal scenes
@@ -640,6 +699,9 @@ def _cross_problems(s: dict) -> list[str]:
                 f"{variance:.3g} m^2 is not positive; allowed: 'mccool' only when roughness.sigma > "
                 f"{math.sqrt(MCCOOL_VARIANCE_CONSTANT) / eta_r:.3g} m, else 'sigma'"
             )
+    motion = s.get("motion")
+    if motion is not None and motion.kind == "table" and motion.table is None:
+        problems.append("motion.kind = 'table': motion.table is missing; allowed: rows [t (s), U (m/s)] or a file")
     if effects is not None and operating is not None and not effects.asperity_contact:
         if not effects.hydrodynamics or operating.speed == 0:
             problems.append(

@@ -64,6 +64,9 @@ class Model:
     contact: object | None  # RoughContact when effects.asperity_contact
     deformation: object | None  # ElasticDeformation when effects.elastic_deformation
     hydrodynamic: bool  # Reynolds solved (effect on and speed > 0)
+    # A transient step's time derivative of h_T (unsteady.integrator.Squeeze: rate(h_T) m/s,
+    # coefficient = d rate/d h_T 1/s, film_scale m), None for a steady solve
+    squeeze: object | None = None
 
     @classmethod
     def assemble(cls, scene, mesh: Mesh | None = None, contact=None) -> "Model":
@@ -90,8 +93,12 @@ class Model:
 
     def coarsened(self) -> "Model | None":
         """The same model on the mesh with every other node (same domain) in each direction
-        longer than NESTED_COARSEST nodes; None when there is none."""
+        longer than NESTED_COARSEST nodes; None when there is none, or for a transient step
+        (its squeeze history lives on this mesh; it starts from the previous step)."""
         from .reynolds import _coarser
+
+        if self.squeeze is not None:
+            return None
 
         coarse = _coarser(self.mesh, NESTED_COARSEST)
         return None if coarse is None else Model.assemble(self.scene, coarse, self.contact)
@@ -228,8 +235,9 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
 
             solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds")
         faces, _ = fluid_faces(model, film)
+        transient = {} if model.squeeze is None else {"squeeze_rate": model.squeeze.rate(h_t)}  # unsteady/
         reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse,
-                               faces=faces)
+                               faces=faces, **transient)
         fluid_pressure = reynolds.pressure
     return State(
         z=z,
@@ -250,6 +258,8 @@ def _film_scale(model: Model) -> float:
     """A length on which the force changes appreciably: sigma, or a rigid Martin film."""
     if model.contact is not None:
         return model.contact.sigma
+    if model.squeeze is not None:
+        return model.squeeze.film_scale
     from .effects import martin_film
 
     return martin_film(model.scene)
@@ -264,11 +274,12 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
         gradient += state.contact_slope * model.mesh.nodal_area
     if state.reynolds is not None:
         _, face_slopes = fluid_faces(model, state.film)
+        _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+        squeeze = {} if model.squeeze is None else {"squeeze_slope": model.squeeze.coefficient * gap_slope}
         if face_slopes is not None:  # rough surfaces: the film on the faces (percolation.py)
             gap_slope, coefficient_slope = None, face_slopes
-        else:
-            _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
-        gradient += state.reynolds.load_sensitivity(model.mesh, gap_slope, coefficient_slope, model.scene.operating.speed)
+        gradient += state.reynolds.load_sensitivity(model.mesh, gap_slope, coefficient_slope, model.scene.operating.speed,
+                                                    **squeeze)
     return gradient
 
 
@@ -346,8 +357,11 @@ def contact_newton_step(model: Model, state: State, residual: np.ndarray) -> np.
     (D = -dp_c/dh >= 0, w = nodal area) and eliminating the rigid shift dz gives
         step + K(D (step - <step>)) = residual,   <step> = sum(w D step) / sum(w D),
     solved matrix-free by GMRES with the FFT influence operator. Without asperity contact
-    the step is the plain fixed-point step.
+    the step is the plain fixed-point step. A transient step adds the squeeze film's stiffness
+    (model.squeeze.newton_step), which at short time steps dwarfs the contact's.
     """
+    if model.squeeze is not None and state.reynolds is not None:
+        return model.squeeze.newton_step(model, state, residual)
     if model.contact is None:
         return residual
     stiffness = -state.contact_slope  # >= 0, Pa/m
@@ -524,16 +538,56 @@ def _central_value(mesh: Mesh, field: np.ndarray) -> float:
     return float(np.interp(0.0, mesh.x, row))
 
 
+def point_outputs(model: Model, state: State) -> tuple[dict, list[str]]:
+    """(outputs, notes) of a solved state, as a case reports them: the electrical path
+    (electrical.path), real contact area, friction (DESIGN.md; the shear resists the sliding
+    whichever way the block moves), loads and films. Shared by solve() and each instant of a
+    transient (unsteady/series.py)."""
+    from .electrical import electrical_path
+    from .friction import fluid_shear_force, friction_coefficient
+
+    scene, mesh = model.scene, model.mesh
+    area = mesh.nodal_area
+    path = electrical_path(scene, mesh, model.contact, state.film)
+    notes = list(path.notes)
+    if model.contact is not None:  # a node with A_r/A_n > 1 is fully in contact (validity: area_capped)
+        real_area = float(np.sum(np.minimum(model.contact.area_fraction(state.film), 1.0) * area))
+    else:
+        real_area = 0.0
+        notes.append("asperity_contact off: no metallic path")
+    shear = 0.0
+    if state.reynolds is not None:
+        shear = np.sign(scene.operating.speed) * fluid_shear_force(
+            mesh, state.expected_gap, state.fluid_pressure, state.reynolds.cavitated,
+            scene.lubricant.viscosity, scene.operating.speed, film=state.film,
+            sigma=model.contact.sigma if model.contact is not None else None,
+            content=getattr(state.reynolds, "content", None), split=scene.roughness.split,
+        )
+    force = scene.operating.force
+    carried = state.total_force
+    outputs = {
+        **path.scalars(scene.interface.open_resistance),
+        "friction_coefficient": friction_coefficient(scene.interface.boundary_friction, state.contact_force, shear, force),
+        "fluid_force": state.fluid_force,
+        "contact_force": state.contact_force,
+        "applied_force": force,
+        "fluid_load_fraction": state.fluid_force / carried if carried > 0 else 0.0,
+        "min_film_thickness": float(np.min(state.film)),
+        "central_film_thickness": _central_value(mesh, state.film),
+        "separation": state.z,
+        "real_contact_area": real_area,
+    }
+    return outputs, notes
+
+
 def solve(scene, fields: bool = False, initial: dict | None = None, return_state: bool = False):
     """Solve one operating point; returns the case ``xarray.Dataset`` (DESIGN.md outputs).
 
     ``initial`` ({"z": float, "delta": array}) warm-starts the coupling loop (a sweep's
     continuation); a cold start must give the same answer within tolerance.
     """
-    from .electrical import electrical_path
-    from .validity import assess
-    from .friction import fluid_shear_force, friction_coefficient
     from .output import case_dataset
+    from .validity import assess
 
     start = time.perf_counter()
     notes = []
@@ -550,38 +604,13 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         state, diag = coupled_solve(model, initial)
     if diag["failure"]:
         notes.append("NOT CONVERGED: " + diag["failure"])
+    outputs, output_notes = point_outputs(model, state)
+    notes.extend(output_notes)
     mesh = model.mesh
-    area = mesh.nodal_area
-    path = electrical_path(scene, mesh, model.contact, state.film)
-    notes.extend(path.notes)
-    if model.contact is not None:  # a node with A_r/A_n > 1 is fully in contact (validity: area_capped)
-        real_area = float(np.sum(np.minimum(model.contact.area_fraction(state.film), 1.0) * area))
-    else:
-        real_area = 0.0
-        notes.append("asperity_contact off: no metallic path")
     validity = assess(scene, mesh, model.contact, state, model.hydrodynamic)
     notes.extend(f"validity {flag}: {note}" for flag, note in validity.items())
-    shear = 0.0
-    if model.hydrodynamic:
-        shear = fluid_shear_force(
-            mesh, state.expected_gap, state.fluid_pressure, state.reynolds.cavitated,
-            scene.lubricant.viscosity, scene.operating.speed, film=state.film,
-            sigma=model.contact.sigma if model.contact is not None else None,
-            content=getattr(state.reynolds, "content", None), split=scene.roughness.split,
-        )
-    force = scene.operating.force
-    carried = state.total_force
     scalars = {
-        **path.scalars(scene.interface.open_resistance),
-        "friction_coefficient": friction_coefficient(scene.interface.boundary_friction, state.contact_force, shear, force),
-        "fluid_force": state.fluid_force,
-        "contact_force": state.contact_force,
-        "applied_force": force,
-        "fluid_load_fraction": state.fluid_force / carried if carried > 0 else 0.0,
-        "min_film_thickness": float(np.min(state.film)),
-        "central_film_thickness": _central_value(mesh, state.film),
-        "separation": state.z,
-        "real_contact_area": real_area,
+        **outputs,
         "converged": int(diag["converged"]),
         "iterations": diag["iterations"],
         "force_residual": diag["force_residual"],

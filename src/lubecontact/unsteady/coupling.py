@@ -1,0 +1,102 @@
+"""Newton step of the deformation in a transient step, with the squeeze film's stiffness.
+
+The steady coupled iteration (solver.coupled_solve) preconditions the deformation fixed point
+delta -> K(p + p_c) with the contact's stiffness only; the fluid's is left to Anderson
+mixing. The squeeze term makes the fluid pressure respond to the film as c0 ~ 1/dt (a short
+step nearly freezes the film), so at short steps the fixed point's gain is far above 1 and
+the mixing cannot tame it. Here the linearisation includes the fluid: with P'(v) the change
+of the total pressure for a film change v (contact -D v, fluid by the linearised Reynolds
+equation at the current cavitated set) and the rigid shift dz eliminated by the force
+balance, sum dA P'(v + dz) = 0,
+
+    step - K P'(step + dz(step)) = residual,      dz(v) = -sum dA P'(v) / sum dA P'(1),
+
+solved matrix-free by GMRES (each product: a few array operations on the faces and one
+back-substitution with the LU factors of the Reynolds solve). Without fluid pressure it is solver.contact_newton_step's
+equation.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.sparse.linalg import LinearOperator, gmres
+
+from ..reynolds import _interior
+from ..solver import fluid_faces, fluid_film
+
+# Relative residual of the GMRES solve of the Newton step: an inexact Newton step is enough,
+# the coupled iteration judges convergence on its own residuals.
+NEWTON_RTOL = 1e-2
+
+
+def fluid_pressure_response(model, state):
+    """v (ny, nx) m -> change of the fluid pressure (Pa) for the film change v, at the state's
+    cavitated set: dp_F = -A_FF^{-1} (dr/dh v)_F, r = A(k) p - b(h_T) the finite-volume
+    residual of reynolds.reynolds_system, differentiated face by face: with rough surfaces k
+    and h_T of each face are evaluated at the face's film (solver.fluid_faces, percolation.py),
+    with smooth ones they are face means of the nodal values (solver.fluid_film's slopes).
+    A_FF^{-1} is applied with the LU factors the Reynolds solve used (its own or a nearby
+    matrix's: an approximate Newton step, judged by the outer loop)."""
+    mesh, solution, squeeze = model.mesh, state.reynolds, model.squeeze
+    speed = model.scene.operating.speed
+    free = _interior(mesh.shape, mesh.line) & ~solution.cavitated
+    _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+    _, face_slopes = fluid_faces(model, state.film)
+    p = solution.pressure
+    factors = None if solution.factor is None else solution.factor.factors
+    gx, gy = mesh.dy / mesh.dx, mesh.dx / mesh.dy
+    squeeze_cell = squeeze.coefficient * mesh.nodal_area
+
+    def on_faces(v):
+        """dk and dh_T of the x faces and dk of the y faces for the film change v."""
+        vx, vy = 0.5 * (v[:, :-1] + v[:, 1:]), 0.5 * (v[:-1, :] + v[1:, :])
+        if face_slopes is not None:
+            return face_slopes.coefficient_x * vx, face_slopes.gap_x * vx, face_slopes.coefficient_y * vy
+        kv, gv = coefficient_slope * v, gap_slope * v
+        return 0.5 * (kv[:, :-1] + kv[:, 1:]), 0.5 * (gv[:, :-1] + gv[:, 1:]), 0.5 * (kv[:-1, :] + kv[1:, :])
+
+    def apply(v):
+        response = np.zeros(mesh.shape)
+        if factors is None:
+            return response
+        dk_x, dg_x, dk_y = on_faces(v)
+        dr = squeeze_cell * gap_slope * v
+        flux = gx * dk_x * (p[:, :-1] - p[:, 1:]) + 0.5 * speed * mesh.dy * dg_x  # Poiseuille + Couette
+        dr[:, :-1] += flux
+        dr[:, 1:] -= flux
+        flux_y = gy * dk_y * (p[:-1, :] - p[1:, :])
+        dr[:-1, :] += flux_y
+        dr[1:, :] -= flux_y
+        response[free] = -factors.solve(dr[free])
+        return response
+
+    return apply
+
+
+def squeeze_newton_step(model, state, residual: np.ndarray) -> np.ndarray:
+    """The deformation step of the module docstring (residual = K(p + p_c) - delta)."""
+    if model.deformation is None:
+        return residual
+    mesh = model.mesh
+    fluid = fluid_pressure_response(model, state)
+    contact = -state.contact_slope if state.contact_slope is not None else 0.0
+
+    def response(v):
+        return fluid(v) - contact * v
+
+    rigid = response(np.ones(mesh.shape))
+    total = float(np.sum(rigid * mesh.nodal_area))
+    if not total < 0.0:
+        return residual
+
+    def matvec(v):
+        v = v.reshape(mesh.shape)
+        dp = response(v)
+        shift = -float(np.sum(dp * mesh.nodal_area)) / total
+        return (v - model.deformation(dp + shift * rigid)).ravel()
+
+    operator = LinearOperator((residual.size,) * 2, matvec=matvec, dtype=float)
+    step, info = gmres(operator, residual.ravel(), rtol=NEWTON_RTOL, atol=0.0, restart=40, maxiter=2)
+    if info < 0 or not np.all(np.isfinite(step)):
+        return residual
+    return step.reshape(mesh.shape)

@@ -1,0 +1,243 @@
+"""Implicit time integration of the quasi-static lubricated contact (physics.md section 14).
+
+At each instant the cylinder is in force balance (no inertia): F = F_contact(h) + F_fluid,
+where the fluid pressure solves the averaged Reynolds equation with the squeeze term,
+
+    div(k grad p) = (U/2) dh_T/dx + dh_T/dt,
+
+so the film h(x, y, t) is the state. dh_T/dt at the new time level is the variable-step
+BDF2 difference (BDF1 on the first step and after a breakpoint of the motion)
+
+    dh_T/dt ~ c0 h_T^{n+1} + c1 h_T^n + c2 h_T^{n-1}    (Squeeze.rate),
+
+which enters the Reynolds right-hand side as a nodal source and, through c0, the load
+sensitivity, so Newton on z keeps its quadratic convergence. Each step is one coupled
+solve (solver.coupled_solve: force balance, deformation and cavitation as in the steady
+model) warm-started from the extrapolated film of the last steps.
+
+Error control (Milne's device): the film predicted by polynomial extrapolation through the
+last p + 1 levels and the BDF_p result differ by (P_p - D_p/c0) h^{(p+1)}, of which the
+BDF's local error is -D_p/c0 h^{(p+1)}; both constants are computed for the actual steps
+(error_fraction). A step is accepted when that estimate, node by node relative to
+``tolerance`` times max(|h|, floor) (floor: sigma with roughness, FILM_FLOOR without), has
+a root mean square over the nodes below 1 (the weighted RMS norm of ODE codes such as
+SUNDIALS: a kink in one node's history, where its film crosses the fluid's floor at h = 0,
+does not force the whole contact to tiny steps), and the
+next step is scaled by 0.9 E^{-1/(p+1)} within [SHRINK, GROWTH]: steps are short while the
+film moves and grow geometrically (log-spaced) as it settles. Steps land on the motion's
+breakpoints.
+
+Cavitation is Swift-Stieber (reynolds.solve_reynolds), as in the steady model: it does not
+conserve mass where a film re-forms. A mass-conserving (JFO) solver replaces it by changing
+``solve_reynolds`` (and ``Squeeze.rate``, which would act on the film content theta h_T);
+this module only supplies dh_T/dt.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..mesh import build_mesh
+from ..solver import Model, SolveError, coupled_solve, fluid_film
+
+FIRST_STEP = 1.0e-9  # s: first step from the steady start
+GROWTH, SHRINK, SAFETY = 4.0, 0.2, 0.9  # step-size controller limits
+FILM_FLOOR = 1.0e-10  # m: error floor of a smooth film (relative error above it)
+MIN_STEP = 1.0e-15  # s: below this a failing step ends the run, flagged
+MAX_STEPS = 20000
+
+
+@dataclass
+class Squeeze:
+    """dh_T/dt at the new time level as a function of its h_T (solver.Model.squeeze)."""
+
+    coefficient: float  # c0, 1/s
+    history: np.ndarray  # c1 h_T^n + c2 h_T^{n-1}, m/s
+    film_scale: float  # m, a length on which the force changes (solver._film_scale)
+
+    def rate(self, expected_gap: np.ndarray) -> np.ndarray:
+        return self.coefficient * expected_gap + self.history
+
+    def newton_step(self, model, state, residual):
+        """solver.contact_newton_step with the squeeze film's stiffness (coupling.py)."""
+        from .coupling import squeeze_newton_step
+
+        return squeeze_newton_step(model, state, residual)
+
+
+def bdf_coefficients(steps: list[float]) -> list[float]:
+    """[c0, c1, ...] of dy/dt(t_{n+1}) ~ sum c_j y^{n+1-j} for the last steps
+    [dt_n, dt_{n-1}, ...] (order = len(steps), 1 or 2; variable-step BDF)."""
+    if len(steps) == 1:
+        return [1.0 / steps[0], -1.0 / steps[0]]
+    dt, previous = steps
+    w = dt / previous
+    return [(1 + 2 * w) / ((1 + w) * dt), -(1 + w) / dt, w * w / ((1 + w) * dt)]
+
+
+def error_fraction(steps: list[float]) -> float:
+    """Local error of BDF_p as a multiple of (corrector - predictor), the predictor being
+    the polynomial through the last p + 1 levels; steps = [dt_n, dt_{n-1}, ...] (p + 1 of them).
+    Both constants from y = (t - t_{n+1})^{p+1}/(p+1)!, whose derivative at t_{n+1} is 0."""
+    order = len(steps) - 1
+    offsets = np.cumsum(steps)  # t_{n+1} - t_{n+1-j}, j = 1..p+1
+    c = bdf_coefficients(steps[:order])
+    y = (-offsets) ** (order + 1) / math.factorial(order + 1)
+    corrector = -sum(cj * yj for cj, yj in zip(c[1:], y[:order])) / c[0]  # y_c - y_true per h^(p+1)
+    predictor = -float(np.prod(offsets)) / math.factorial(order + 1)  # y_p - y_true per h^(p+1)
+    return abs(corrector / (corrector - predictor))
+
+
+def _extrapolate(times: list[float], values: list, t: float):
+    """Lagrange polynomial through (times, values) evaluated at t."""
+    total = 0.0
+    for i, (ti, vi) in enumerate(zip(times, values)):
+        weight = 1.0
+        for j, tj in enumerate(times):
+            if j != i:
+                weight *= (t - tj) / (ti - tj)
+        total = total + weight * vi
+    return total
+
+
+@dataclass
+class Level:
+    """One accepted time level."""
+
+    time: float
+    speed: float
+    state: object  # solver.State
+    expected_gap: np.ndarray  # h_T used by the squeeze history
+    model: Model  # the model of the step (its scene carries the speed)
+    diagnostics: dict
+    order: int = 0
+    error: float = 0.0  # error estimate / tolerance of the step
+    squeeze_rate: np.ndarray | None = None
+
+
+def scene_at(scene, speed: float):
+    """The scene with operating.speed = speed (any sign: oscillation), without re-validation."""
+    return dataclasses.replace(scene, operating=dataclasses.replace(scene.operating, speed=float(speed)))
+
+
+class TimeIntegrator:
+    """Integrates one scene's motion from its steady start; ``run`` gives the levels."""
+
+    def __init__(self, scene, history, contact=None):
+        self.scene, self.history = scene, history
+        self.tolerance = scene.motion.tolerance
+        # one mesh for the whole run, its automatic inlet sized for the fastest instant (mesh.py)
+        mesh = build_mesh(scene_at(scene, history.peak_speed()))
+        steady = Model.assemble(scene_at(scene, history.initial_speed()), mesh=mesh, contact=contact)
+        self.contact = steady.contact
+        self.floor = steady.contact.sigma if steady.contact is not None else FILM_FLOOR
+        self.steady_model = steady
+        self.coupled_solves = 0
+        self.rejected = 0
+
+    def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
+        return fluid_film(model, film)[0]
+
+    def start(self) -> Level:
+        """The steady state at t = 0 (the motion's initial speed)."""
+        model = self.steady_model
+        state, diag = coupled_solve(model)
+        self.coupled_solves += 1
+        transient = dataclasses.replace(model, hydrodynamic=bool(self.scene.effects.hydrodynamics))
+        return Level(0.0, self.history.initial_speed(), state, self._gap(transient, state.film), model, diag)
+
+    def step(self, levels: list[Level], t_new: float, order: int):
+        """Coupled solve at t_new with BDF_order; (level, error/tolerance) or (None, reason)."""
+        last = levels[-1]
+        dt = t_new - last.time
+        previous = [last.time - levels[-2].time] if order == 2 else []
+        c = bdf_coefficients([dt] + previous)
+        history = sum(cj * lv.expected_gap for cj, lv in zip(c[1:], levels[::-1]))
+        speed = self.history.speed(t_new)
+        scale = max(float(np.min(last.state.film)), self.floor) if self.contact is None else self.floor
+        model = dataclasses.replace(
+            self.steady_model, scene=scene_at(self.scene, speed), squeeze=Squeeze(c[0], history, scale),
+            hydrodynamic=bool(self.scene.effects.hydrodynamics),
+        )
+        used = levels[-(order + 1):]
+        times = [lv.time for lv in used]
+        initial = {
+            "z": _extrapolate(times, [lv.state.z for lv in used], t_new),
+            "delta": _extrapolate(times, [lv.state.delta for lv in used], t_new),
+            "stiffness": last.diagnostics.get("stiffness"),
+        }
+        if last.state.reynolds is not None:
+            initial["cavitated"] = last.state.reynolds.cavitated
+        try:
+            state, diag = coupled_solve(model, initial)
+        except SolveError as err:
+            return None, str(err)
+        self.coupled_solves += 1
+        if not diag["converged"]:
+            return None, diag["failure"] or "coupled solve did not meet its tolerances"
+        predicted = _extrapolate(times, [lv.state.film for lv in used], t_new)
+        fraction = error_fraction([dt] + [lv.time - lv_prev.time for lv, lv_prev in zip(used[::-1], used[::-1][1:])])
+        weight = self.tolerance * np.maximum(np.abs(state.film), self.floor)
+        error = float(np.sqrt(np.mean((fraction * (state.film - predicted) / weight) ** 2)))
+        gap = self._gap(model, state.film)
+        if state.reynolds is not None:
+            state.reynolds.factor = None  # LU factors: not needed after the step, megabytes each
+        level = Level(t_new, speed, state, gap, model, diag, order, error, model.squeeze.rate(gap))
+        return level, error
+
+    def run(self, progress: bool = False):
+        """(levels, failure message or ''): accepted levels from t = 0 to the motion's end."""
+        from tqdm.auto import tqdm
+
+        history = self.history
+        self.wall_time = 0.0
+        levels = [self.start()]
+        if not levels[0].diagnostics["converged"]:
+            return levels, "the steady start did not converge: " + levels[0].diagnostics["failure"]
+        # a steady state has dh/dt = 0: a virtual earlier level makes the first predictor exact
+        levels.insert(0, dataclasses.replace(levels[0], time=-FIRST_STEP))
+        breaks = [b for b in history.breakpoints() if b > 0.0] + [history.end]
+        dt, order, failure = FIRST_STEP, 1, ""
+        started = time.perf_counter()
+        bar = tqdm(total=history.end, unit="s", desc="transient", disable=not progress,
+                   bar_format="{l_bar}{bar}| t = {n:.3g} of {total:.3g} s [{elapsed}] {postfix}")
+        with bar:
+            while levels[-1].time < history.end and len(levels) < MAX_STEPS:
+                t = levels[-1].time
+                target = next(b for b in breaks if b > t)
+                if history.rest_from is None or t < history.rest_from:
+                    dt = min(dt, history.max_step)
+                t_new = target if t + 1.1 * dt >= target else t + dt
+                level, outcome = self.step(levels, t_new, order)
+                if level is None:
+                    if t_new - t <= MIN_STEP:
+                        failure = f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge: {outcome}"
+                        break
+                    self.rejected += 1
+                    dt = 0.25 * (t_new - t)
+                    continue
+                factor = SAFETY * max(outcome, 1e-10) ** (-1.0 / (order + 1))
+                if outcome > 1.0 and t_new - t > MIN_STEP:
+                    self.rejected += 1
+                    dt = (t_new - t) * max(SHRINK, min(factor, 1.0))
+                    continue
+                levels.append(level)
+                bar.update(t_new - t)
+                bar.set_postfix_str(f"dt = {t_new - t:.2g} s, steps {len(levels) - 2}")
+                if t_new == target and target in breaks[:-1]:
+                    # U(t) is not smooth here: first order, from the last step's size (not
+                    # FIRST_STEP: a tiny step makes the squeeze film stiff beyond what the
+                    # coupled iteration resolves; the error control shortens it if needed)
+                    order = 1
+                    dt = t_new - t
+                else:
+                    dt, order = (t_new - t) * min(GROWTH, max(SHRINK, factor)), 2
+        if not failure and levels[-1].time < history.end:
+            failure = f"stopped after {MAX_STEPS} steps at t = {levels[-1].time:.6g} s"
+        self.wall_time = time.perf_counter() - started
+        return levels[1:], failure

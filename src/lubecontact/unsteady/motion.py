@@ -1,0 +1,85 @@
+"""The block's sliding speed U(t) of a scene's ``motion:`` section (DESIGN.md Part II "Time").
+
+Kinds: ``steady`` (U constant), ``stop`` (U until stop_time, a linear ramp to rest, rest),
+``start`` (from rest, a linear ramp up to U from t = 0), ``oscillation`` (reciprocating
+sliding from rest, x = A (1 - cos 2 pi f t) for ``cycles`` cycles, U = dx/dt, then rest) and ``table``
+(rows (t, U), linear in between, the last U after). A zero ramp is a jump, taken at the
+instant just after the breakpoint.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+# Steps per oscillation period at most: the integrator must resolve each cycle.
+STEPS_PER_PERIOD = 40
+
+
+@dataclass(frozen=True)
+class SpeedHistory:
+    """U(t) of one motion, with what the integrator needs to know about it."""
+
+    kind: str
+    times: np.ndarray  # breakpoints of a piecewise-linear U (s)
+    speeds: np.ndarray  # U at the breakpoints (m/s)
+    end: float  # last simulated instant (s)
+    rest_from: float | None  # from this instant on U = 0 for good (None: never)
+    period: float | None = None  # oscillation period (s)
+    amplitude_speed: float = 0.0  # oscillation: 2 pi f A (m/s)
+
+    @classmethod
+    def from_scene(cls, scene) -> "SpeedHistory":
+        m = scene.motion
+        u = scene.operating.speed if m.speed is None else m.speed
+        if m.kind == "steady":
+            return cls("steady", np.array([0.0]), np.array([u]), m.duration, None if u > 0 else 0.0)
+        if m.kind == "stop":
+            t0, t1 = m.stop_time, m.stop_time + m.ramp
+            return cls("stop", np.array([0.0, t0, t1]), np.array([u, u, 0.0]), m.stop_time + m.duration, t1)
+        if m.kind == "start":
+            return cls("start", np.array([0.0, m.ramp]), np.array([0.0, u]), m.duration, None if u > 0 else 0.0)
+        if m.kind == "oscillation":
+            period = 1.0 / m.frequency
+            stop = m.cycles * period
+            return cls("oscillation", np.array([0.0, stop]), np.array([0.0, 0.0]), max(m.duration, stop), stop,
+                       period, 2.0 * math.pi * m.frequency * m.amplitude)
+        table = np.asarray(m.table, dtype=float)
+        moving = np.flatnonzero(table[:, 1] != 0.0)
+        rest = 0.0 if moving.size == 0 else (table[moving[-1] + 1, 0] if moving[-1] + 1 < len(table) else None)
+        return cls("table", table[:, 0], table[:, 1], m.duration, rest)
+
+    def speed(self, t: float) -> float:
+        """U(t), m/s. At a breakpoint with a jump (zero ramp) the value after it."""
+        if self.period is not None:
+            if t >= self.rest_from:
+                return 0.0
+            return self.amplitude_speed * math.sin(2.0 * math.pi * t / self.period)
+        i = int(np.searchsorted(self.times, t, side="right"))
+        if i == 0:
+            return float(self.speeds[0])
+        if i == self.times.size:
+            return float(self.speeds[-1])
+        t0, t1 = self.times[i - 1], self.times[i]
+        return float(self.speeds[i - 1] + (t - t0) / (t1 - t0) * (self.speeds[i] - self.speeds[i - 1]))
+
+    def initial_speed(self) -> float:
+        """U just before t = 0+ (the steady state the run starts from)."""
+        return float(self.speeds[0])
+
+    def peak_speed(self) -> float:
+        """Largest |U| of the motion, m/s: the film the mesh's inlet must carry (mesh.py)."""
+        if self.period is not None:
+            return abs(self.amplitude_speed)
+        return float(np.max(np.abs(self.speeds)))
+
+    def breakpoints(self) -> list[float]:
+        """Instants where U is not smooth: steps land on them."""
+        return sorted({float(t) for t in self.times if 0.0 < t < self.end} | ({self.rest_from} if self.rest_from else set()))
+
+    @property
+    def max_step(self) -> float:
+        """Largest time step the motion allows while it moves (s)."""
+        return self.period / STEPS_PER_PERIOD if self.period is not None else math.inf

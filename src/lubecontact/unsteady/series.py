@@ -1,0 +1,153 @@
+"""The time series of a transient (DESIGN.md Part II "Time"): the Dataset along ``time``,
+``reconnect_time`` and the oscillation metrics, with CF units on every variable."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import xarray as xr
+
+# name: (units, long_name), along ``time``
+SERIES = {
+    "speed": ("m s-1", "sliding speed U of the block"),
+    "contact_resistance": ("ohm", "electrical contact resistance: the whole path (electrical/path.py)"),
+    "min_film_thickness": ("m", "minimum mean-plane separation h over the mesh (may be negative)"),
+    "central_film_thickness": ("m", "mean-plane separation h at x = 0, y = 0 (may be negative)"),
+    "fluid_force": ("N", "load carried by the fluid film (squeeze and wedge)"),
+    "contact_force": ("N", "load carried by asperity contact (Eq. 11 summed over nodes)"),
+    "friction_coefficient": ("1", "friction coefficient (boundary friction of solid load + |fluid shear|) / applied force"),
+    "separation": ("m", "vertical position z of the cylinder (Eq. 3)"),
+    "real_contact_area": ("m2", "real area of asperity contact"),
+    "step_converged": ("1", "1 if the coupled solve of the step met its tolerances"),
+    "iterations": ("1", "outer (deformation) iterations of the step's coupled solve"),
+    "order": ("1", "order of the BDF formula of the step (0: the steady start)"),
+    "error_estimate": ("1", "estimated local error of the step / its tolerance (accepted: <= 1)"),
+    "volume_balance": ("1", "net outflow of the full-film region + its volume change rate, relative to the flows"),
+}
+SCALARS = {
+    "reconnect_time": ("s", "time after the motion stops until contact_resistance first falls to "
+                            "reconnect_factor x the resistance at rest (inf: not within duration)"),
+    "rest_resistance": ("ohm", "contact resistance of the contact at rest (steady, no fluid pressure)"),
+    "open_resistance": ("ohm", "resistance above which the contact counts as open"),
+    "converged": ("1", "1 if every step converged and the run reached its end"),
+    "steps": ("1", "accepted time steps"),
+    "rejected_steps": ("1", "time steps rejected by the error control or a failed solve"),
+    "coupled_solves": ("1", "coupled solves (accepted and rejected steps, start and rest state)"),
+    "solve_time": ("s", "wall time of the run"),
+    "open_fraction": ("1", "oscillation: fraction of the oscillation time with the contact open"),
+}
+CYCLE = {"peak_resistance": ("ohm", "oscillation: largest contact resistance in each cycle")}
+INTEGER = ("step_converged", "iterations", "order", "converged", "steps", "rejected_steps", "coupled_solves")
+
+
+def open_resistance(scene) -> float:
+    """The open threshold (ohm): interface.open_resistance."""
+    return float(scene.interface.open_resistance)
+
+
+# what each instant of a series reports (solver.point_outputs, as a steady case does)
+INSTANT = ("contact_resistance", "min_film_thickness", "central_film_thickness", "fluid_force", "contact_force",
+           "friction_coefficient", "separation", "real_contact_area")
+
+
+def instant(model, state) -> dict:
+    """The per-instant outputs of one level, as the steady solve reports them."""
+    from ..solver import point_outputs
+
+    outputs, _ = point_outputs(model, state)
+    return {"speed": model.scene.operating.speed, **{name: outputs[name] for name in INSTANT}}
+
+
+def volume_balance(level) -> float:
+    """Discrete mass balance of the full-film region at one level, from face fluxes
+    (reynolds.boundary_flux, independent of the assembled matrix) and the squeeze rate:
+    (net outflow + sum dA dh_T/dt) / (the larger of the wedge inlet flow and sum dA |dh_T/dt|)."""
+    from ..reynolds import _interior, boundary_flux
+    from ..solver import fluid_faces
+
+    state, model = level.state, level.model
+    if state.reynolds is None or level.squeeze_rate is None:
+        return 0.0
+    mesh = model.mesh
+    full = _interior(mesh.shape, mesh.line) & ~state.reynolds.cavitated
+    squeeze = mesh.nodal_area * level.squeeze_rate
+    faces, _ = fluid_faces(model, state.film)
+    outflow = boundary_flux(mesh, state.reynolds, state.expected_gap, state.flow_coefficient, model.scene.operating.speed,
+                            faces)
+    inlet = 0.5 * abs(model.scene.operating.speed) * float(np.max(state.expected_gap)) * mesh.dy * mesh.ny
+    scale = max(inlet, float(np.sum(np.abs(squeeze[full]))), 1e-300)
+    return (outflow + float(np.sum(squeeze[full]))) / scale
+
+
+def reconnect_time(time, resistance, rest_from, threshold) -> float:
+    """First time after ``rest_from`` at which resistance <= threshold (log-linear between
+    levels), minus rest_from; inf if never; NaN without a rest (the motion never stops)."""
+    if rest_from is None:
+        return math.nan
+    time, resistance = np.asarray(time), np.asarray(resistance)
+    after = time >= rest_from
+    t, r = time[after], resistance[after]
+    below = np.flatnonzero(r <= threshold)
+    if below.size == 0:
+        return math.inf
+    i = int(below[0])
+    if i == 0:
+        return 0.0
+    r0, r1 = r[i - 1], r[i]
+    if not np.isfinite(r0):
+        return float(t[i] - rest_from)
+    fraction = (math.log(r0) - math.log(threshold)) / (math.log(r0) - math.log(r1))
+    return float(t[i - 1] + fraction * (t[i] - t[i - 1]) - rest_from)
+
+
+def oscillation_metrics(time, resistance, period, cycles, threshold) -> tuple[float, np.ndarray]:
+    """(fraction of [0, cycles period] with R > threshold, peak R of each cycle). Each level
+    stands for the interval to the next (left rectangles on the adaptive steps)."""
+    time, resistance = np.asarray(time), np.asarray(resistance)
+    end = cycles * period
+    inside = time < end
+    widths = np.diff(np.append(time[inside], end))
+    fraction = float(np.sum(widths[resistance[inside] > threshold]) / end)
+    cycle = np.minimum((time[inside] / period).astype(int), cycles - 1)
+    peaks = np.array([resistance[inside][cycle == k].max(initial=-np.inf) for k in range(cycles)])
+    return fraction, peaks
+
+
+def level_rows(levels) -> list[dict]:
+    """The values of SERIES at each level."""
+    return [instant(lv.model, lv.state) | {
+        "step_converged": int(lv.diagnostics["converged"]), "iterations": lv.diagnostics["iterations"],
+        "order": lv.order, "error_estimate": lv.error, "volume_balance": volume_balance(lv),
+    } for lv in levels]
+
+
+def series_dataset(scene, times, rows, scalars: dict, notes: str, peaks=None) -> xr.Dataset:
+    """The transient's Dataset: per-level variables (``rows``) along ``time`` and the run's scalars."""
+    from .. import __version__
+
+    data = {}
+    for name, (units, long_name) in SERIES.items():
+        dtype = np.int32 if name in INTEGER else np.float64
+        data[name] = xr.Variable(("time",), np.array([row[name] for row in rows], dtype=dtype),
+                                 {"units": units, "long_name": long_name})
+    for name, value in scalars.items():
+        units, long_name = SCALARS[name]
+        dtype = np.int32 if name in INTEGER else np.float64
+        data[name] = xr.Variable((), np.asarray(value, dtype=dtype), {"units": units, "long_name": long_name})
+    coords = {"time": xr.Variable(("time",), np.asarray(times, dtype=float),
+                                  {"units": "s", "long_name": "time since the start of the motion", "standard_name": "time"})}
+    if peaks is not None:
+        units, long_name = CYCLE["peak_resistance"]
+        data["peak_resistance"] = xr.Variable(("cycle",), peaks, {"units": units, "long_name": long_name})
+        coords["cycle"] = xr.Variable(("cycle",), np.arange(1, peaks.size + 1, dtype=np.int32),
+                                      {"units": "1", "long_name": "oscillation cycle number"})
+    attrs = {
+        "title": "lubecontact transient: a lubricated rough electrical contact after its motion changes",
+        "Conventions": "CF-1.10",
+        "scene": scene.canonical_yaml(),
+        "scene_hash": scene.hash,
+        "lubecontact_version": __version__,
+        "notes": notes,
+    }
+    return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -1,0 +1,229 @@
+"""Time (lubecontact.transient, DESIGN.md Part II "Time") against independent truths: the
+analytic squeeze law of a rigid smooth cylinder (physics.md section 14), the steady solve,
+the limit of shrinking ramps, the integrator's order, the discrete volume balance and
+trends argued from the equations. Line mode and coarse meshes keep them cheap."""
+
+import math
+
+import numpy as np
+import pytest
+
+import lubecontact as lc
+from lubecontact.unsteady.integrator import bdf_coefficients, error_fraction
+from lubecontact.unsteady.motion import SpeedHistory
+from lubecontact.unsteady.series import oscillation_metrics, reconnect_time
+
+TABLE1 = "config/scenes/table1.yaml"
+# Table 1 as a rigid rough line contact on a coarse mesh, stopped from 1 m/s over 1 ms
+ROUGH_STOP = {"operating.speed": 1.0, "motion.kind": "stop", "motion.ramp": 1e-3, "motion.duration": 0.02,
+              "mesh.ny": 1, "mesh.nx": 31, "effects.elastic_deformation": False}
+# rigid smooth long cylinder (w' = 5000 N/m, mu = 0.1 Pa s, R = 10 mm) on a domain of
+# ten inlet lengths sqrt(2 R h) of the 0.5 um film each side
+SMOOTH_STOP = {"operating.speed": 1.0, "motion.kind": "stop", "motion.ramp": 1e-4, "motion.duration": 3e-3,
+               "effects.asperity_contact": False, "effects.elastic_deformation": False,
+               "mesh.ny": 1, "mesh.nx": 2001, "mesh.x_min": -1e-3, "mesh.x_max": 1e-3}
+
+
+def scene(base, **overrides):
+    return lc.load_scene(TABLE1, {**base, **overrides})
+
+
+def test_default_motion_keeps_every_old_hash():
+    table1 = lc.load_scene(TABLE1)
+    # the canonical form (and so the hash) of a scene without motion has no motion section:
+    # the same as an explicit steady motion, and as the scene written before motion: existed
+    assert "motion" not in table1.canonical_yaml()
+    assert lc.load_scene(TABLE1, {"motion.kind": "steady"}).hash == table1.hash
+    stop = lc.load_scene(TABLE1, {"motion.kind": "stop"})
+    assert stop.hash != table1.hash and "motion" in stop.canonical_yaml()
+    assert lc.load_scene(stop) == stop
+
+
+def test_bad_motion_is_refused_naming_the_key():
+    with pytest.raises(lc.SceneError) as err:
+        lc.load_scene(TABLE1, {"motion.kind": "stpo", "motion.ramp": -1, "motion.reconnect_factor": 0.5})
+    text = str(err.value)
+    assert "motion.kind = 'stpo'" in text and "did you mean 'stop'" in text
+    assert "motion.ramp = -1" in text and "motion.reconnect_factor = 0.5" in text
+    with pytest.raises(lc.SceneError, match="motion.table is missing"):
+        lc.load_scene(TABLE1, {"motion.kind": "table"})
+    with pytest.raises(lc.SceneError, match="motion.table"):
+        lc.load_scene(TABLE1, {"motion.kind": "table", "motion.table": [[0.1, 1.0], [0.2, 0.0]]})
+
+
+def test_speed_histories():
+    stop = SpeedHistory.from_scene(lc.load_scene(TABLE1, {"motion.kind": "stop", "motion.speed": 2.0,
+                                                           "motion.stop_time": 1.0, "motion.ramp": 0.5}))
+    assert [stop.speed(t) for t in (0.0, 1.0, 1.25, 1.5, 9.0)] == [2.0, 2.0, 1.0, 0.0, 0.0]
+    assert stop.rest_from == 1.5 and stop.end == 11.0
+    jump = SpeedHistory.from_scene(lc.load_scene(TABLE1, {"motion.kind": "stop", "motion.ramp": 0.0}))
+    assert jump.initial_speed() == 0.1 and jump.speed(0.0) == 0.0  # operating.speed, then at rest
+    osc = SpeedHistory.from_scene(lc.load_scene(TABLE1, {"motion.kind": "oscillation", "motion.amplitude": 1e-3,
+                                                          "motion.frequency": 2.0, "motion.cycles": 2}))
+    # x = A (1 - cos 2 pi f t): U = 2 pi f A sin(2 pi f t), at rest after two cycles
+    assert osc.speed(0.125) == pytest.approx(2 * math.pi * 2.0 * 1e-3)
+    assert osc.speed(0.0) == 0.0 and osc.speed(1.2) == 0.0 and osc.rest_from == 1.0
+    table = SpeedHistory.from_scene(lc.load_scene(TABLE1, {"motion.kind": "table",
+                                                            "motion.table": [[0, 1.0], [1, 3.0], [2, 0.0]]}))
+    assert [table.speed(t) for t in (0.5, 1.5, 5.0)] == [2.0, 1.5, 0.0] and table.rest_from == 2.0
+
+
+def test_bdf2_coefficients_and_error_constants_at_constant_step():
+    # constant-step BDF2: (3/2, -2, 1/2)/h; local error (2/9) h^3 y''' against the quadratic
+    # predictor's -h^3 y''': the error is 2/11 of their difference; BDF1 1/3 (h^2/2 vs h^2)
+    assert bdf_coefficients([0.1, 0.1]) == pytest.approx([15.0, -20.0, 5.0])
+    assert error_fraction([0.1, 0.1, 0.1]) == pytest.approx(2 / 11)
+    assert error_fraction([0.1, 0.1]) == pytest.approx(1 / 3)
+
+
+def test_rigid_smooth_cylinder_follows_the_analytic_squeeze_law():
+    # physics.md section 14: h0^(-1/2)(t) = h_i^(-1/2) + w' t / (6 sqrt(2) pi mu R^(3/2)) from the
+    # end of the ramp, where the film left by 1 m/s sliding (0.41 um) has 2 % of its load left
+    ds = lc.transient(scene(SMOOTH_STOP, **{"motion.tolerance": 1e-5}))
+    assert ds["converged"].item() == 1
+    t, h = ds["time"].values, ds["min_film_thickness"].values
+    after = t >= 1e-4
+    t, h = t[after], h[after]
+    assert t[0] == 1e-4 and h[-1] < h[0] / 15  # the law is tested down to 20 nm
+    prefactor = 5000.0 / (6 * math.sqrt(2) * math.pi * 0.1 * 0.01**1.5)
+    analytic = (h[0] ** -0.5 + prefactor * (t - t[0])) ** -2
+    assert np.max(np.abs(h / analytic - 1)) < 0.01
+    assert np.all(ds["contact_force"].values == 0.0)
+
+
+def test_shrinking_ramps_converge_to_the_jump():
+    # the film 2 ms after the stop begins: the ramp's effect vanishes linearly with its length
+    films = []
+    for ramp in (4e-4, 2e-4, 1e-4, 0.0):
+        ds = lc.transient(scene(SMOOTH_STOP, **{"motion.ramp": ramp, "motion.duration": 2e-3}))
+        films.append(ds["min_film_thickness"].values[-1])
+    gaps = np.abs(np.array(films[:-1]) - films[-1])
+    assert gaps[0] > gaps[1] > gaps[2] > 0
+    assert gaps[1] / gaps[2] == pytest.approx(2.0, rel=0.25)
+
+
+def test_steady_motion_reproduces_the_steady_solve():
+    s = lc.load_scene(TABLE1, {"mesh.ny": 1, "mesh.nx": 31, "operating.speed": 0.3, "motion.duration": 1.0})
+    ds = lc.transient(s)
+    steady = lc.solve(s)
+    assert ds["converged"].item() == 1 and ds["time"].values[-1] == 1.0
+    assert math.isnan(ds["reconnect_time"].item())
+    for name in ("contact_resistance", "min_film_thickness", "fluid_force", "contact_force", "friction_coefficient"):
+        np.testing.assert_allclose(ds[name].values, steady[name].item(), rtol=1e-5, err_msg=name)
+
+
+@pytest.fixture(scope="module")
+def rough_stops():
+    """reconnect times (s) and step counts of the rough stop at three time tolerances"""
+    runs = {tol: lc.transient(scene(ROUGH_STOP, **{"motion.tolerance": tol})) for tol in (1e-3, 1e-4, 1e-5)}
+    return runs
+
+
+def test_time_step_convergence_order_on_the_reconnect_time(rough_stops):
+    # error of each run against the tightest, against its number of steps: BDF2 -> N^-2
+    reference = rough_stops[1e-5]["reconnect_time"].item()
+    loose, tight = rough_stops[1e-3], rough_stops[1e-4]
+    errors = [abs(ds["reconnect_time"].item() - reference) for ds in (loose, tight)]
+    steps = [ds["steps"].item() for ds in (loose, tight)]
+    order = math.log(errors[0] / errors[1]) / math.log(steps[1] / steps[0])
+    assert 1.5 < order < 3.5
+    assert errors[0] < 0.05 * reference
+
+
+def test_stop_reconnects_and_the_full_film_volume_balance_closes(rough_stops):
+    ds = rough_stops[1e-4]
+    assert ds["converged"].item() == 1 and np.all(ds["step_converged"].values == 1)
+    rest = ds["rest_resistance"].item()
+    resistance = ds["contact_resistance"].values
+    assert resistance[0] > 10 * rest  # lifted by the 1 m/s film
+    assert resistance[-1] == pytest.approx(rest, rel=1e-3)  # settled at rest
+    recon = ds["reconnect_time"].item()
+    assert 0.0 < recon < 0.02
+    t = ds["time"].values
+    first = np.flatnonzero((t >= 1e-3) & (resistance <= 2 * rest))[0]
+    assert t[first - 1] - 1e-3 <= recon <= t[first] - 1e-3
+    # every step: net outflow of the pressurised region (face fluxes) = minus its volume change
+    assert np.max(np.abs(ds["volume_balance"].values)) < 1e-9
+    assert np.all(ds["error_estimate"].values <= 1.0)
+
+
+def test_thicker_oil_and_lighter_load_wait_longer():
+    # squeeze flow ~ h^3/mu against a load F: the approach slows with mu and speeds up with F
+    times = {}
+    for key, value in (("lubricant.viscosity", 0.05), ("lubricant.viscosity", 0.2), ("operating.force", 10.0)):
+        times[key, value] = lc.transient(scene(ROUGH_STOP, **{key: value, "motion.tolerance": 1e-2}))["reconnect_time"].item()
+    base = lc.transient(scene(ROUGH_STOP, **{"motion.tolerance": 1e-2}))["reconnect_time"].item()
+    assert times["lubricant.viscosity", 0.05] < base < times["lubricant.viscosity", 0.2]
+    assert times["operating.force", 10.0] < base
+
+
+def test_reconnect_time_and_oscillation_metrics_from_series():
+    t = np.array([0.0, 1.0, 2.0, 3.0, 4.0])
+    r = np.array([100.0, 100.0, 10.0, 1.0, 1.0])
+    assert reconnect_time(t, r, 1.0, 10.0) == pytest.approx(1.0)
+    assert reconnect_time(t, r, 1.0, math.sqrt(1000.0)) == pytest.approx(0.5)  # log-linear
+    assert reconnect_time(t, r, 1.0, 0.5) == math.inf
+    assert math.isnan(reconnect_time(t, r, None, 10.0))
+    fraction, peaks = oscillation_metrics(t, np.array([0.5, 2.0, 0.5, 3.0, 0.1]), 2.0, 2, 1.0)
+    assert fraction == pytest.approx(0.5) and peaks.tolist() == [2.0, 3.0]
+
+
+def test_slow_oscillation_peaks_at_the_steady_resistance_of_its_peak_speed():
+    # quasi-static limit: at 2 Hz the film (ms response) follows U(t); peak U = 2 pi f A = 1 m/s
+    base = {"mesh.ny": 1, "mesh.nx": 31, "effects.elastic_deformation": False}
+    ds = lc.transient(scene(base, **{"motion.kind": "oscillation", "motion.frequency": 2.0, "motion.cycles": 1,
+                                     "motion.amplitude": 1 / (4 * math.pi), "motion.duration": 0.6}))
+    steady = lc.solve(scene(base, **{"operating.speed": 1.0}))["contact_resistance"].item()
+    assert ds["converged"].item() == 1 and ds["peak_resistance"].size == 1
+    assert ds["peak_resistance"].item() == pytest.approx(steady, rel=0.01)
+    assert ds["open_fraction"].item() == 0.0  # Table 1 stays far below the 1 ohm threshold
+    assert ds["contact_resistance"].values[-1] == pytest.approx(ds["rest_resistance"].item(), rel=1e-3)
+
+
+def test_cli_transient_writes_the_series_and_exits_3_when_a_step_fails(tmp_path, capsys):
+    import xarray as xr
+
+    from lubecontact.cli import main
+
+    common = ["transient", TABLE1, "--set", "mesh.ny=1", "--set", "mesh.nx=31", "--set", "motion.kind=stop",
+              "--set", "motion.duration=0.02", "--set", "operating.speed=1.0", "--set", "motion.tolerance=1e-2"]
+    out = tmp_path / "series.nc"
+    assert main(common + ["--out", str(out)]) == 0
+    assert "reconnect_time" in capsys.readouterr().out
+    with xr.open_dataset(out) as ds:
+        assert ds["time"].attrs["units"] == "s" and ds["reconnect_time"].attrs["units"] == "s"
+        assert all("units" in ds[name].attrs and "long_name" in ds[name].attrs for name in ds.data_vars)
+        assert ds.attrs["scene_hash"] == lc.load_scene(TABLE1, {
+            "mesh.ny": 1, "mesh.nx": 31, "motion.kind": "stop", "motion.duration": 0.02, "operating.speed": 1.0,
+            "motion.tolerance": 1e-2}).hash
+        assert 0.0 < ds["reconnect_time"].item() < 0.02
+    failed = tmp_path / "failed.nc"
+    assert main(common + ["--set", "solver.max_iterations=1", "--out", str(failed)]) == 3
+    with xr.open_dataset(failed) as ds:
+        assert ds["converged"].item() == 0 and "NOT CONVERGED" in ds.attrs["notes"]
+    assert main(common + ["--set", "motion.kind=spin", "--out", str(tmp_path / "bad.nc")]) == 2
+    assert not (tmp_path / "bad.nc").exists()
+
+
+def test_gallery_stops_grease_waits_far_longer_than_oil():
+    # the two stop scenes of config/scenes, as rigid coarse line contacts: same contact and
+    # film-forming history scaled by mu; after the stop the squeeze time scales with mu
+    coarse = {"mesh.nx": 31, "mesh.ny": 1, "effects.elastic_deformation": False, "motion.tolerance": 1e-2}
+    oil = lc.transient(lc.load_scene("config/scenes/stop_hydrocarbon_oil.yaml", coarse))
+    grease = lc.transient(lc.load_scene("config/scenes/stop_grease.yaml", coarse))
+    assert oil["converged"].item() == grease["converged"].item() == 1
+    ratio = grease["reconnect_time"].item() / oil["reconnect_time"].item()
+    assert 10.0 < ratio < 10.0 / 0.087 * 3
+
+
+def test_start_settles_at_the_steady_sliding_state_and_a_table_matches_it():
+    base = {"mesh.nx": 31, "mesh.ny": 1, "effects.elastic_deformation": False, "motion.duration": 0.05,
+            "motion.tolerance": 1e-2}
+    start = lc.transient(scene(base, **{"motion.kind": "start", "motion.speed": 1.0, "motion.ramp": 1e-3}))
+    table = lc.transient(scene(base, **{"motion.kind": "table", "motion.table": [[0.0, 0.0], [1e-3, 1.0]]}))
+    sliding = lc.solve(scene(base, **{"operating.speed": 1.0}))
+    assert start["converged"].item() == 1 and start["contact_resistance"].values[0] == pytest.approx(
+        start["rest_resistance"].item(), rel=1e-6)
+    assert start["contact_resistance"].values[-1] == pytest.approx(sliding["contact_resistance"].item(), rel=1e-3)
+    assert math.isnan(start["reconnect_time"].item())
+    np.testing.assert_allclose(table["contact_resistance"].values, start["contact_resistance"].values, rtol=1e-9)

@@ -1,0 +1,64 @@
+# Transient figures (lubecontact.transient): the Table 1 contact after a stop from 1 m/s and
+# under vibration. config/transient.yaml (deep-merged with config["transient"]) names the
+# cases; each is a scene identified by its content hash, run once into
+# <results>/transient/<hash>.nc and shared by the figures that use it. Edits of the solver or
+# of the unsteady package rerun the cases (TRANSIENT_SOURCES).
+
+from pathlib import Path
+
+from lubecontact.unsteady import study as lcstudy
+
+TRANSIENT = lcstudy.study_spec("config/transient.yaml", config.get("transient"))
+TRANSIENT_CASES = lcstudy.figure_cases(TRANSIENT)
+TRANSIENT_OVERRIDES = lcstudy.case_overrides(TRANSIENT, TRANSIENT_CASES)
+TRANSIENT_SOURCES = SOLVER_SOURCES + sorted(str(p) for p in Path("src/lubecontact/unsteady").glob("*.py"))
+TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_vibration"]
+
+
+wildcard_constraints:
+    case="[0-9a-f]{16}",
+
+
+rule transient_case:
+    input:
+        sources=TRANSIENT_SOURCES,
+        base=TRANSIENT["base"],
+    output:
+        f"{RESULTS}/transient/{{case}}.nc",
+    params:
+        overrides=lambda w: TRANSIENT_OVERRIDES[w.case],
+    log:
+        f"{RESULTS}/logs/transient/{{case}}.log",
+    threads: 1
+    resources:
+        runtime=60,
+        mem_mb=2000,
+    conda:
+        "../envs/lubecontact.yaml"
+    script:
+        "../scripts/transient_case.py"
+
+
+rule transient_figure:
+    input:
+        cases=lambda w: [f"{RESULTS}/transient/{c['id']}.nc" for c in TRANSIENT_CASES[w.name]],
+        code="src/lubecontact/unsteady/plots.py",
+    output:
+        png=report(f"{RESULTS}/figures/transient_{{name}}.png", category="Transient"),
+        pdf=f"{RESULTS}/figures/transient_{{name}}.pdf",
+    params:
+        cases=lambda w: [{k: v for k, v in c.items() if k != "overrides"} for c in TRANSIENT_CASES[w.name]],
+        spec=lambda w: TRANSIENT["figures"][w.name],
+    wildcard_constraints:
+        name="stop|reconnect|vibration",
+    log:
+        f"{RESULTS}/logs/transient/figure_{{name}}.log",
+    conda:
+        "../envs/lubecontact.yaml"
+    script:
+        "../scripts/transient_plot.py"
+
+
+rule transient_figures:
+    input:
+        expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=TRANSIENT_FIGURES, ext=["png", "pdf"]),
