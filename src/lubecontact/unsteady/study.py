@@ -1,7 +1,8 @@
 """The transient figures' cases (config/transient.yaml): which scenes to run, by content hash.
 
 A study names a base scene and overrides shared by every case, and three figures:
-``stop`` (curves: a list of {label, set: overrides}), ``reconnect`` (x: a dotted key and its values, one
+``stop`` (curves: a list of {label, set: overrides}), ``reconnect`` (optional set: overrides of
+every case; x: a dotted key and its values, one
 line per value of ``series``), ``vibration`` (one case). Each case is a scene; its hash is
 the case identity (results/transient/<hash>.nc), so a case shared by two figures (the
 baseline stop) runs once. Library code: reads only the base scene.
@@ -44,7 +45,8 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
     chart = figures["reconnect"]
     (series_key, series_values), = chart["series"].items()
     out["reconnect"] = [
-        {"label": f"{series_key} = {s:g} {key_units(series_key)}", "x": x, "series": s, "overrides": {chart["x"]: x, series_key: s}}
+        {"label": f"{series_key} = {s:g} {key_units(series_key)}", "x": x, "series": s,
+         "overrides": {**(chart.get("set") or {}), chart["x"]: x, series_key: s}}
         for s in series_values for x in chart["values"]
     ]
     out["vibration"] = [{"label": "vibration", "overrides": dict(figures["vibration"]["set"])}]
