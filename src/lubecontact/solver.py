@@ -274,7 +274,9 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
         gradient += state.contact_slope * model.mesh.nodal_area
     if state.reynolds is not None:
         _, face_slopes = fluid_faces(model, state.film)
-        _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+        gap_slope = coefficient_slope = None
+        if face_slopes is None or model.squeeze is not None:  # nodal slopes: smooth faces, squeeze term
+            _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
         squeeze = {} if model.squeeze is None else {"squeeze_slope": model.squeeze.coefficient * gap_slope}
         if face_slopes is not None:  # rough surfaces: the film on the faces (percolation.py)
             gap_slope, coefficient_slope = None, face_slopes
