@@ -43,18 +43,25 @@ def _smooth(sigma) -> bool:
     return sigma is None or sigma == 0
 
 
-def _mean_gap_ratio(H: np.ndarray) -> np.ndarray:
-    """h_T / sigma = H Phi(H) + phi(H), evaluated without cancellation.
+def _mean_gap_ratio(H: np.ndarray, cdf: np.ndarray | None = None) -> np.ndarray:
+    """h_T / sigma = H Phi(H) + phi(H), evaluated without cancellation; ``cdf``: Phi(H) when
+    the caller has it already.
 
     For H >= 0 both terms are positive. For H = -t < 0 it is the first partial moment
     F_1(t) = phi(t) - t Phi(-t) = exp(-t^2/2) [1/sqrt(2 pi) - (t/2) erfcx(t/sqrt 2)], whose
     bracket loses only ~eps t^2 relatively; it underflows to 0 (not below) for t > ~38.
+    The second form is evaluated only where H < 0.
     """
     H = np.asarray(H, dtype=float)
-    t = np.maximum(-H, 0.0)  # >= 0, and 0 where the positive branch applies
-    upper = H * ndtr(H) + _INV_SQRT_2PI * np.exp(-0.5 * H * H)
-    lower = np.exp(-0.5 * t * t) * (_INV_SQRT_2PI - 0.5 * t * erfcx(t / np.sqrt(2.0)))
-    return np.where(H >= 0.0, upper, np.maximum(lower, 0.0))
+    cdf = ndtr(H) if cdf is None else cdf
+    ratio = H * cdf + _INV_SQRT_2PI * np.exp(-0.5 * H * H)
+    negative = H < 0.0
+    if np.any(negative):
+        t = -H[negative]
+        lower = np.exp(-0.5 * t * t) * (_INV_SQRT_2PI - 0.5 * t * erfcx(t / np.sqrt(2.0)))
+        ratio = np.array(ratio, dtype=float)  # writable, also for 0-d input
+        ratio[negative] = np.maximum(lower, 0.0)
+    return ratio
 
 
 def expected_gap(h, sigma):
@@ -80,6 +87,16 @@ def expected_gap_slope(h, sigma):
     if _smooth(sigma):
         return np.ones_like(h)
     return ndtr(h / sigma)
+
+
+def expected_gap_and_slope(h, sigma):
+    """(h_T, dh_T/dh) of ``expected_gap`` and ``expected_gap_slope`` with Phi(H) evaluated once."""
+    h = np.asarray(h, dtype=float)
+    if _smooth(sigma):
+        return h, np.ones_like(h)
+    H = h / sigma
+    cdf = ndtr(H)
+    return sigma * _mean_gap_ratio(H, cdf), cdf
 
 
 def pressure_flow_factor_slope(H):
@@ -150,15 +167,25 @@ def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
     """(k, dk/dh) of the Poiseuille coefficient down to percolation, m^3/(Pa s) and m^2/(Pa s):
     Patir-Cheng's (``poiseuille_coefficient_and_slope``) for H = h/sigma >= 0.5, the
     percolation law above for H < 0.5, floored at SEALED_LEAKAGE k(0.5) (slope 0 there).
-    Continuous at H = 0.5, non-decreasing in h. Needs rough surfaces (sigma > 0)."""
-    h = np.asarray(h, dtype=float)
-    H = h / sigma
-    upper, upper_slope = poiseuille_coefficient_and_slope(np.maximum(h, H_VALID * sigma), sigma, viscosity,
-                                                          flow_factors)
+    Continuous at H = 0.5, non-decreasing in h. Needs rough surfaces (sigma > 0).
+
+    Evaluated in one pass (one exp and one Phi per film; it runs on every face of every
+    evaluation): above H = 0.5 the branch of poiseuille_coefficient_and_slope that applies there."""
+    H = np.asarray(h, dtype=float) / sigma
+    H_upper = np.maximum(H, H_VALID)
+    cube = sigma**3 / (12.0 * viscosity)
+    if flow_factors:
+        decay = np.exp(-PC_R * H_upper)
+        phi, dphi = 1.0 - PC_C * decay, (PC_C * PC_R) * decay
+    else:
+        phi, dphi = 1.0, 0.0
+    upper = phi * H_upper**3 * cube
+    upper_slope = (dphi * H_upper**3 + 3.0 * phi * H_upper**2) * (cube / sigma)
     k_valid = poiseuille_coefficient(H_VALID * sigma, sigma, viscosity, flow_factors)
     reference = ndtr(H_VALID) - 0.5
-    share = np.clip((ndtr(H) - 0.5) / reference, 0.0, 1.0)
-    share_slope = np.where(H > 0.0, _INV_SQRT_2PI * np.exp(-0.5 * np.clip(H, 0.0, H_VALID) ** 2) / reference, 0.0)
+    H_lower = np.clip(H, 0.0, H_VALID)
+    share = np.clip((ndtr(H_lower) - 0.5) / reference, 0.0, 1.0)
+    share_slope = np.where(H > 0.0, _INV_SQRT_2PI * np.exp(-0.5 * H_lower**2) / reference, 0.0)
     above = H >= H_VALID
     k = np.where(above, upper, k_valid * share)
     slope = np.where(above, upper_slope, k_valid * share_slope / sigma)

@@ -136,6 +136,10 @@ class State:
     contact_slope: np.ndarray | None = None  # dp_c/dh (Pa/m) of the contact law, <= 0
     flow_coefficient: np.ndarray | None = None  # k used by the fluid, m^3/(Pa s)
     load_gradient: np.ndarray | None = None  # dF/dh_j (N/m), set by balance_force
+    # the film on the faces (rough surfaces, percolation.FaceFilm) and its slopes d/dh_f, as
+    # the fluid used them (fluid_faces), else None
+    faces: object | None = None
+    face_slopes: object | None = None
 
     @property
     def total_force(self) -> float:
@@ -162,7 +166,7 @@ def _content_law(model: Model):
     """h -> (h_T, dh_T/dh): Patir-Cheng expected gap, or with flow factors between surfaces of
     unequal roughness (roughness.split != 0.5) the Couette gap h_T + sigma phi_s of the shear
     flow factor (shear_factors.couette_gap)."""
-    from .flow_factors import expected_gap, expected_gap_slope
+    from .flow_factors import expected_gap_and_slope
 
     scene = model.scene
     sigma = model.contact.sigma if model.contact is not None else None
@@ -172,7 +176,7 @@ def _content_law(model: Model):
         from .shear_factors import couette_gap
 
         return partial(couette_gap, sigma=sigma, split=scene.roughness.split)
-    return lambda h: (expected_gap(h, sigma), expected_gap_slope(h, sigma))
+    return lambda h: expected_gap_and_slope(h, sigma)
 
 
 def _coefficient_law(model: Model):
@@ -223,7 +227,7 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
     if model.contact is not None:
         contact_pressure, contact_slope = model.contact.pressure_and_slope(film)
     fluid_pressure = np.zeros(mesh.shape)
-    h_t = k = reynolds = None
+    h_t = k = reynolds = faces = face_slopes = None
     if model.hydrodynamic:
         h_t, k = fluid_film(model, film)
         if scene.effects.cavitation == "jfo":  # mass-conserving cavitation (cavitation_jfo.py)
@@ -234,7 +238,7 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
             from .reynolds import solve_reynolds
 
             solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds")
-        faces, _ = fluid_faces(model, film)
+        faces, face_slopes = fluid_faces(model, film)
         transient = {} if model.squeeze is None else {"squeeze_rate": model.squeeze.rate(h_t)}  # unsteady/
         reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse,
                                faces=faces, **transient)
@@ -251,6 +255,8 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
         fluid_force=float(np.sum(fluid_pressure * area)),
         contact_slope=contact_slope,
         flow_coefficient=k,
+        faces=faces,
+        face_slopes=face_slopes,
     )
 
 
@@ -273,7 +279,7 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
     if state.contact_slope is not None:
         gradient += state.contact_slope * model.mesh.nodal_area
     if state.reynolds is not None:
-        _, face_slopes = fluid_faces(model, state.film)
+        face_slopes = state.face_slopes
         gap_slope = coefficient_slope = None
         if face_slopes is None or model.squeeze is not None:  # nodal slopes: smooth faces, squeeze term
             _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)

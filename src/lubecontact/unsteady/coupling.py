@@ -22,7 +22,7 @@ import numpy as np
 from scipy.sparse.linalg import LinearOperator, gmres
 
 from ..reynolds import _interior
-from ..solver import fluid_faces, fluid_film
+from ..solver import fluid_film
 
 # Relative residual of the GMRES solve of the Newton step: an inexact Newton step is enough,
 # the coupled iteration judges convergence on its own residuals.
@@ -41,7 +41,7 @@ def fluid_pressure_response(model, state):
     speed = model.scene.operating.speed
     free = _interior(mesh.shape, mesh.line) & ~solution.cavitated
     _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
-    _, face_slopes = fluid_faces(model, state.film)
+    face_slopes = state.face_slopes
     p = solution.pressure
     factors = None if solution.factor is None else solution.factor.factors
     gx, gy = mesh.dy / mesh.dx, mesh.dx / mesh.dy

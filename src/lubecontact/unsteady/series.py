@@ -64,7 +64,6 @@ def volume_balance(level) -> float:
     (reynolds.boundary_flux, independent of the assembled matrix) and the squeeze rate:
     (net outflow + sum dA dh_T/dt) / (the larger of the wedge inlet flow and sum dA |dh_T/dt|)."""
     from ..reynolds import _interior, boundary_flux
-    from ..solver import fluid_faces
 
     state, model = level.state, level.model
     if state.reynolds is None or level.squeeze_rate is None:
@@ -72,9 +71,8 @@ def volume_balance(level) -> float:
     mesh = model.mesh
     full = _interior(mesh.shape, mesh.line) & ~state.reynolds.cavitated
     squeeze = mesh.nodal_area * level.squeeze_rate
-    faces, _ = fluid_faces(model, state.film)
     outflow = boundary_flux(mesh, state.reynolds, state.expected_gap, state.flow_coefficient, model.scene.operating.speed,
-                            faces)
+                            state.faces)
     inlet = 0.5 * abs(model.scene.operating.speed) * float(np.max(state.expected_gap)) * mesh.dy * mesh.ny
     scale = max(inlet, float(np.sum(np.abs(squeeze[full]))), 1e-300)
     return (outflow + float(np.sum(squeeze[full]))) / scale
