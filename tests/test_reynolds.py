@@ -241,6 +241,36 @@ def test_cold_start_needs_few_steps_on_fine_meshes():
     assert solution.converged and solution.iterations <= 4
 
 
+def test_factors_of_a_nearby_set_solve_exactly_without_a_factorisation():
+    """BlockInverse with the factors of another pressurised set (ExtendedFactors): CG reaches the
+    direct solution of the new block (scipy spsolve, independent of SuperLU's reuse) for a set
+    a few nodes away and a perturbed film, without factorising; a set too far away is
+    factorised; and ``factors`` never passes on factors of another set."""
+    from scipy.sparse.linalg import spsolve
+
+    from lubecontact.reynolds import REUSE_MAX_CHANGES, BlockInverse, reynolds_system
+
+    mesh, hT, k = rough_cylinder_2d(nx=61, ny=41)
+    system = reynolds_system(mesh, hT, k, 0.1)
+    index = np.flatnonzero(system.unknown)
+    rng = np.random.default_rng(3)
+    free = np.ones(index.size, bool)
+    free[rng.choice(index.size, 40, replace=False)] = False
+    old = BlockInverse(system.matrix[free][:, free].tocsc(), index[free])
+    perturbed = reynolds_system(mesh, hT * 1.01, k * 1.03, 0.1).matrix
+    for changes, factorised in ((0, False), (REUSE_MAX_CHANGES, False), (REUSE_MAX_CHANGES + 1, True)):
+        new_free = free.copy()
+        flip = rng.choice(index.size, changes, replace=False)
+        new_free[flip] = ~new_free[flip]
+        block = perturbed[new_free][:, new_free].tocsc()
+        rhs = rng.random(block.shape[0])
+        inverse = BlockInverse(block, index[new_free], old, chain=True)
+        x = inverse.solve(rhs)
+        np.testing.assert_allclose(x, spsolve(block, rhs), rtol=1e-9)
+        assert (inverse.lu is not None) == factorised
+        assert inverse.factors.shape == block.shape  # LU of this very set
+
+
 def test_plain_reynolds_recovered_for_thick_films():
     """flow_factors on or off, rough with H >= 60 everywhere: the smooth solution."""
     mesh, h, k_smooth = line_problem(-8.0, 2.0, 201)

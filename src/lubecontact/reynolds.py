@@ -32,10 +32,12 @@ Nodes whose every face has k = 0 (a dry patch where k underflowed, H < -21) carr
 they are held at p = 0 and reported as cavitated.
 
 Cost: each step is a sparse LU factorisation of A_FF (SuperLU, minimum-degree ordering),
-which dominates a coupled solve on fine meshes. Two things avoid it: ``reuse`` (a solve a
-little earlier in the coupled iteration on the same pressurised set: CG preconditioned
-with its factors, BlockInverse) and ``load_sensitivity`` (dW/dh by one back-substitution,
-so the force balance takes Newton steps instead of extra Reynolds solves).
+which dominates a coupled solve on fine meshes. Three things avoid it: ``reuse`` (a solve a
+little earlier in the coupled iteration, on the same pressurised set or one a few nodes
+away: CG preconditioned with its factors, BlockInverse), the same for an active-set step
+whose set differs from the step before by a few nodes (ExtendedFactors), and
+``load_sensitivity`` (dW/dh by one back-substitution, so the force balance takes Newton
+steps instead of extra Reynolds solves).
 """
 
 from __future__ import annotations
@@ -61,13 +63,24 @@ COARSEST_NODES = 33
 # Active-set steps a warm start gets before the solver falls back to the cold start.
 WARM_START_STEPS = 4
 # Reuse of LU factors (``reuse``): conjugate gradients on A_FF preconditioned by the factors
-# of a nearby matrix on the same pressurised set stop at this relative residual (2-norm),
-# and give up (a new factorisation is made) after REUSE_CG_STEPS steps, or after
-# REUSE_CG_CHECK steps that have not cut the residual by REUSE_CG_CHECK_FACTOR.
+# of a nearby matrix stop at this relative residual (2-norm), and give up (a new
+# factorisation is made) after REUSE_CG_STEPS steps, or after REUSE_CG_CHECK steps that have
+# not cut the residual by REUSE_CG_CHECK_FACTOR. When the factors belong to a pressurised
+# set that differs from this one by c nodes (ExtendedFactors), the preconditioner differs
+# from A_FF^-1 by a perturbation of rank ~2c, which CG takes ~2c more steps to resolve: both
+# limits grow by REUSE_CG_STEPS_PER_CHANGE c. A back-substitution costs 1/25-1/40 of a
+# factorisation (2.6k-160k unknowns) and CG needs ~c more of them, so within one active-set
+# loop (whose intermediate sets are solved once) sets that differ by more than
+# REUSE_MAX_CHANGES nodes are factorised; across solves (the set then serves the remaining
+# evaluations, ~2 solves each) borrowed factors keep serving only while the set differs
+# from theirs by at most REUSE_KEEP_CHANGES nodes.
 REUSE_CG_TOLERANCE = 1e-12
 REUSE_CG_STEPS = 12
 REUSE_CG_CHECK = 3
 REUSE_CG_CHECK_FACTOR = 1e-3
+REUSE_CG_STEPS_PER_CHANGE = 2
+REUSE_MAX_CHANGES = 8
+REUSE_KEEP_CHANGES = 3
 
 
 @dataclass
@@ -182,19 +195,50 @@ def _factorize(block):
     return splu(block, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
 
 
-def _preconditioned_cg(block, rhs, preconditioner):
+class ExtendedFactors:
+    """The LU factors ``lu`` of a block on the node set ``source`` (flat mesh indices in block
+    order) applied as a preconditioner on another set ``target`` of a nearby matrix with
+    diagonal ``diagonal``: A_old^-1 on the nodes both sets share (a residual restricted to
+    them, extended by zero), Jacobi 1/diagonal on the nodes only ``target`` has. Symmetric
+    positive definite when A_old is, so CG may use it; with equal sets it is A_old^-1."""
+
+    def __init__(self, lu, source, target, diagonal):
+        self.lu, self.source = lu, source
+        position = np.full(int(max(source.max(initial=-1), target.max(initial=-1))) + 1, -1)
+        position[source] = np.arange(source.size)
+        where = position[target]
+        self.shared = where >= 0
+        self.into = where[self.shared]
+        self.same = source.size == target.size and bool(self.shared.all()) and np.array_equal(source, target)
+        self.changes = int(np.count_nonzero(~self.shared)) + (source.size - self.into.size)
+        self.inverse_diagonal = 1.0 / diagonal[~self.shared]
+
+    def solve(self, rhs):
+        if self.same:
+            return self.lu.solve(rhs)
+        extended = np.zeros(self.source.size)
+        extended[self.into] = rhs[self.shared]
+        solution = np.empty(rhs.size)
+        solution[self.shared] = self.lu.solve(extended)[self.into]
+        solution[~self.shared] = rhs[~self.shared] * self.inverse_diagonal
+        return solution
+
+
+def _preconditioned_cg(block, rhs, preconditioner, changes=0):
     """x with block x = rhs by conjugate gradients preconditioned with ``preconditioner``
-    (LU factors of a nearby SPD matrix); None when it does not converge fast (see REUSE_CG_*)."""
+    (LU factors of a nearby SPD matrix, on a set that differs by ``changes`` nodes); None
+    when it does not converge fast (see REUSE_CG_*)."""
     x = np.zeros_like(rhs)
     r = rhs.copy()
     target = REUSE_CG_TOLERANCE * np.linalg.norm(rhs)
     start = np.linalg.norm(r)
     if start <= target:
         return x
+    extra = REUSE_CG_STEPS_PER_CHANGE * changes
     z = preconditioner.solve(r)
     d = z.copy()
     rz = r @ z
-    for step in range(1, REUSE_CG_STEPS + 1):
+    for step in range(1, REUSE_CG_STEPS + extra + 1):
         q = block @ d
         alpha = rz / (d @ q)
         x += alpha * d
@@ -202,7 +246,7 @@ def _preconditioned_cg(block, rhs, preconditioner):
         norm = np.linalg.norm(r)
         if norm <= target:
             return x
-        if step == REUSE_CG_CHECK and norm > REUSE_CG_CHECK_FACTOR * start:
+        if step == REUSE_CG_CHECK + extra and norm > REUSE_CG_CHECK_FACTOR * start:
             return None
         z = preconditioner.solve(r)
         rz, rz_old = r @ z, rz
@@ -211,41 +255,65 @@ def _preconditioned_cg(block, rhs, preconditioner):
 
 
 class BlockInverse:
-    """Solves with the pressurised block A_FF of one Reynolds solve: by its own LU factors,
-    or, given the factors of a nearby matrix on the same set (``preconditioner``), by
-    conjugate gradients preconditioned with them, factorising A_FF only if CG stalls.
+    """Solves with the pressurised block A_FF (nodes ``index``, flat mesh indices) of one
+    Reynolds solve: by its own LU factors, or, given the factors of a nearby matrix
+    (``nearby``: a BlockInverse on the same set or one that differs by at most
+    REUSE_MAX_CHANGES nodes), by conjugate gradients preconditioned with them
+    (ExtendedFactors), factorising A_FF only if CG stalls.
 
     In the coupled iteration consecutive Reynolds solves differ by a small change of the
-    film, so the old factors are an almost exact inverse and CG needs a few back-
-    substitutions instead of a factorisation (the cost of a solve on fine meshes).
+    film, and the active-set steps by a few nodes of the free boundary, so the old factors
+    are an almost exact inverse and CG needs a few back-substitutions instead of a
+    factorisation (the cost of a solve on fine meshes).
     """
 
-    def __init__(self, block, preconditioner=None):
+    def __init__(self, block, index, nearby=None, chain=False):
         self.block = block  # A_FF, csc
-        self.preconditioner = preconditioner
-        self.lu = _factorize(block) if preconditioner is None else None
+        self.index = index
+        self.preconditioner = None
+        if nearby is not None:
+            lu, source = nearby.own_factors
+            candidate = ExtendedFactors(lu, source, index, block.diagonal())
+            borrowed = nearby.lu is None
+            # factors borrowed for another set are passed on freely within one active-set
+            # loop (its intermediate sets are solved once); see REUSE_KEEP_CHANGES
+            allowed = REUSE_MAX_CHANGES if chain or not borrowed else REUSE_KEEP_CHANGES
+            if candidate.changes <= allowed:
+                self.preconditioner = candidate
+        self.lu = _factorize(block) if self.preconditioner is None else None
+
+    @property
+    def own_factors(self):
+        """(LU factors, their node set) of the last factorisation behind this inverse."""
+        if self.lu is not None:
+            return self.lu, self.index
+        return self.preconditioner.lu, self.preconditioner.source
 
     @property
     def factors(self):
-        """The LU factors used: A_FF's own, or the nearby matrix's."""
-        return self.lu if self.lu is not None else self.preconditioner
+        """LU factors on this very set: A_FF's own, or a nearby matrix's on the same set;
+        factors borrowed from another set are not passed on (A_FF is factorised)."""
+        if self.lu is None and not self.preconditioner.same:
+            self.lu = _factorize(self.block)
+        return self.lu if self.lu is not None else self.preconditioner.lu
 
     def solve(self, rhs):
         if self.lu is None:
-            x = _preconditioned_cg(self.block, rhs, self.preconditioner)
+            x = _preconditioned_cg(self.block, rhs, self.preconditioner, self.preconditioner.changes)
             if x is not None:
                 return x
             self.lu = _factorize(self.block)
         return self.lu.solve(rhs)
 
 
-def _solve_on(matrix, rhs, free, factors=None):
+def _solve_on(matrix, rhs, free, index, nearby=None, chain=False):
     """(p, BlockInverse of A_FF or None) with p = 0 off the free set and A_FF p_F = b_F on
-    it; ``factors``: LU factors of a nearby matrix on the same free set to try first."""
+    it; ``index``: flat mesh index of each unknown; ``nearby``, ``chain``: the BlockInverse of
+    a nearby matrix to precondition with (BlockInverse)."""
     p = np.zeros(rhs.size)
     inverse = None
     if free.any():
-        inverse = BlockInverse(matrix[free][:, free].tocsc(), factors)
+        inverse = BlockInverse(matrix[free][:, free].tocsc(), index[free], nearby, chain)
         p[free] = inverse.solve(rhs[free])
     return p, inverse
 
@@ -311,13 +379,17 @@ def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations
     return _interpolate(solution.pressure, coarse, mesh) <= 0.0
 
 
-def _active_set(matrix, rhs, cavitated, max_steps, factors=None):
+def _active_set(matrix, rhs, cavitated, max_steps, index, nearby=None):
     """Primal-dual active-set steps from the cavitated set ``cavitated`` (unknown-node mask):
     (p, cavitated set of p, steps, whether the set repeated, BlockInverse of the last step).
-    ``factors``: LU factors on the pressurised set of ``cavitated`` for the first step."""
+    ``index``: flat mesh index of each unknown; ``nearby``: a BlockInverse (the previous
+    evaluation's) whose factors may precondition the first step; each later step is
+    preconditioned by the factors of the step before (BlockInverse), so a free boundary
+    that moves by a few nodes costs back-substitutions, not a factorisation."""
     w_tol = SET_TOLERANCE * np.abs(rhs).max(initial=0.0)
     for steps in range(1, max_steps + 1):
-        p, factor = _solve_on(matrix, rhs, ~cavitated, factors if steps == 1 else None)
+        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby, chain=steps > 1)
+        nearby = factor if factor is not None else nearby
         w = matrix @ p - rhs
         p_tol = SET_TOLERANCE * np.abs(p).max(initial=0.0)
         updated = np.where(cavitated, w >= -w_tol, p < -p_tol)
@@ -337,15 +409,11 @@ def _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, 
     return _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations, squeeze_rate)[system.unknown]
 
 
-def _reusable(mesh, system, first_free, reuse):
-    """LU factors of the solution ``reuse`` when its pressurised set is ``first_free``
-    (unknown-node mask of the first linear solve), else None."""
+def _reusable(mesh, reuse):
+    """The BlockInverse of the solution ``reuse`` when it is on this mesh, else None."""
     if reuse is None or reuse.factor is None or reuse.pressure.shape != mesh.shape:
         return None
-    free = np.zeros(mesh.shape, dtype=bool)
-    free[system.unknown] = first_free
-    same = np.array_equal(free, _interior(mesh.shape, mesh.line) & ~reuse.cavitated)
-    return reuse.factor.factors if same else None
+    return reuse.factor
 
 
 def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
@@ -372,20 +440,22 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     coefficient = np.asarray(coefficient, dtype=float)
     system = reynolds_system(mesh, expected_gap, coefficient, speed, faces, squeeze_rate)
     matrix, rhs = system.matrix, system.rhs
+    index = np.flatnonzero(system.unknown)
+    nearby = _reusable(mesh, reuse)
     if not cavitation:
         cavitated = np.zeros(rhs.size, dtype=bool)
-        p, factor = _solve_on(matrix, rhs, ~cavitated, _reusable(mesh, system, ~cavitated, reuse))
+        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby)
         iterations, repeated = 1, True
     else:
         iterations, repeated = 0, False
         if cavitated_guess is not None:
             warm = np.asarray(cavitated_guess, dtype=bool)[system.unknown]
             p, cavitated, iterations, repeated, factor = _active_set(
-                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), _reusable(mesh, system, ~warm, reuse)
+                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), index, nearby
             )
         if not repeated and iterations < max_iterations:
             cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate)
-            p, cavitated, steps, repeated, factor = _active_set(matrix, rhs, cold, max_iterations - iterations)
+            p, cavitated, steps, repeated, factor = _active_set(matrix, rhs, cold, max_iterations - iterations, index)
             iterations += steps
     residual = _relative_residual(matrix, rhs, p, cavitated, cavitation)
 
