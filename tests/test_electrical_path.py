@@ -145,7 +145,9 @@ def test_uniform_film_conductance():
 # lubricated ones were measured again after the flow near contact changed (issue 11:
 # percolating flow factor evaluated on the finite-volume faces; before it they were
 # 5.1527777436384485e-05, 803651491.5605284 and 2.268687550677048e-06 ohm on these coarse
-# meshes), so that this test guards the electrical path, not the fluid model.
+# meshes), so that this test guards the electrical path, not the fluid model. They hold to
+# the solver's tolerance (1e-6), not to round-off: the coupled Newton step (issue 14) takes
+# another path to the same discrete solution (R at 10 m/s moved by 1.3e-7).
 PAPER_VALUES = [
     ({"mesh.nx": 21, "mesh.ny": 1, "operating.speed": 0.0}, 1.8258480325425027e-06),
     ({"mesh.nx": 21, "mesh.ny": 1, "operating.speed": 1.0}, 7.366027879195133e-05),
@@ -160,7 +162,7 @@ def test_paper_model_unchanged(overrides, before):
 
     scene = lc.load_scene(TABLE1, overrides)
     ds = lc.solve(scene.replace({"mesh.x_min": -UPSTREAM_LENGTHS * auto_length_scale(scene)}))
-    assert float(ds.contact_resistance) == pytest.approx(before, rel=1e-9)
+    assert float(ds.contact_resistance) == pytest.approx(before, rel=1e-6)
     assert float(ds.spot_resistance) == float(ds.contact_resistance)
     assert float(ds.macro_constriction_resistance) == 0.0 and float(ds.film_resistance) == math.inf
     assert int(ds.open_circuit) == int(before > 10.0)  # interface.open_resistance = 10 ohm

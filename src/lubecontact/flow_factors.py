@@ -169,14 +169,13 @@ def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
     percolation law above for H < 0.5, floored at SEALED_LEAKAGE k(0.5) (slope 0 there).
     Continuous at H = 0.5, non-decreasing in h. Needs rough surfaces (sigma > 0).
 
-    Evaluated in one pass (one exp and one Phi per film; it runs on every face of every
-    evaluation): above H = 0.5 the branch of poiseuille_coefficient_and_slope that applies there."""
+    Evaluated in one pass (it runs on every face of every evaluation): above H = 0.5 only the
+    branch of poiseuille_coefficient_and_slope that applies there, below it one Phi."""
     H = np.asarray(h, dtype=float) / sigma
     H_upper = np.maximum(H, H_VALID)
     cube = sigma**3 / (12.0 * viscosity)
     if flow_factors:
-        decay = np.exp(-PC_R * H_upper)
-        phi, dphi = 1.0 - PC_C * decay, (PC_C * PC_R) * decay
+        phi, dphi = pressure_flow_factor(H_upper), pressure_flow_factor_slope(H_upper)
     else:
         phi, dphi = 1.0, 0.0
     upper = phi * H_upper**3 * cube

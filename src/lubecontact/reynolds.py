@@ -291,11 +291,9 @@ class BlockInverse:
 
     @property
     def factors(self):
-        """LU factors on this very set: A_FF's own, or a nearby matrix's on the same set;
-        factors borrowed from another set are not passed on (A_FF is factorised)."""
-        if self.lu is None and not self.preconditioner.same:
-            self.lu = _factorize(self.block)
-        return self.lu if self.lu is not None else self.preconditioner.lu
+        """An approximate inverse of A_FF on this set (``solve``): its own LU factors, or the
+        nearby ones (ExtendedFactors)."""
+        return self.lu if self.lu is not None else self.preconditioner
 
     def solve(self, rhs):
         if self.lu is None:

@@ -14,12 +14,15 @@ Algorithm (only the enabled effects are assembled and run):
    ``tolerance * F``: safeguarded Newton on the total force, whose slope dF/dz comes with
    each evaluation (contact law slope + Reynolds adjoint, ``force_gradient``); bisection
    once bracketed when a step misbehaves (the contact law has a jump at 1.9 omega_c).
-2. Recompute the deformation from the pressures at that z. The fixed point
-   delta -> K(p + p_c) is stiff where the asperities are stiff against the surface
-   compliance, so each correction is preconditioned by the contact part of its Jacobian:
-   (I + K D) step = K(p + p_c) - delta with D = -dp_c/dh >= 0, solved by GMRES with the
-   FFT operator (a Newton step for the dry contact), and the preconditioned map is then
-   accelerated by Anderson mixing (which also picks up the fluid's stiffness). The next z
+2. Recompute the deformation from the pressures at that z and take a Newton step of the
+   fixed point delta -> K(p + p_c): with Reynolds fluid pressure between rough surfaces the
+   coupled step of newton.py ((I - K P') step = K(p + p_c) - delta, P' the linearised contact and fluid
+   pressure with the force balance kept, by GMRES with the Reynolds factors and the FFT
+   operator; 3-6 iterations on Table 1 where the contact-only step took 4-11). Without
+   fluid (or with JFO or no cavitation) the step is preconditioned by the contact part of the
+   Jacobian only, (I + K D) step = K(p + p_c) - delta with D = -dp_c/dh >= 0 (a Newton
+   step for the dry contact), and accelerated by Anderson mixing (also for smooth steady
+   films, where full coupled Newton steps overshoot to h <= 0). The next z
    is predicted to first order from the load gradient, so a balance near convergence takes
    one evaluation. Stop when the change is below ``tolerance`` times the deformation's range.
 Consecutive Reynolds solves reuse the previous LU factors as a CG preconditioner while the
@@ -43,6 +46,7 @@ from scipy.sparse.linalg import LinearOperator, gmres
 from .anderson import AndersonMixer
 from .materials import effective_modulus
 from .mesh import Mesh, build_mesh
+from .newton import coupled_newton_step
 
 
 class SolveError(RuntimeError):
@@ -365,11 +369,9 @@ def contact_newton_step(model: Model, state: State, residual: np.ndarray) -> np.
     (D = -dp_c/dh >= 0, w = nodal area) and eliminating the rigid shift dz gives
         step + K(D (step - <step>)) = residual,   <step> = sum(w D step) / sum(w D),
     solved matrix-free by GMRES with the FFT influence operator. Without asperity contact
-    the step is the plain fixed-point step. A transient step adds the squeeze film's stiffness
-    (model.squeeze.newton_step), which at short time steps dwarfs the contact's.
+    the step is the plain fixed-point step. With Reynolds fluid pressure the coupled
+    iteration takes newton.coupled_newton_step instead (the fluid's stiffness too).
     """
-    if model.squeeze is not None and state.reynolds is not None:
-        return model.squeeze.newton_step(model, state, residual)
     if model.contact is None:
         return residual
     stiffness = -state.contact_slope  # >= 0, Pa/m
@@ -475,7 +477,18 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
         z = initial.get("z")
         stiffness = initial.get("stiffness")
         cavitated = initial.get("cavitated")
-    mixer = AndersonMixer(beta=1.0)
+    # With Reynolds fluid pressure between rough surfaces, and in every transient step (its
+    # squeeze stiffness dwarfs the rest), the deformation takes the coupled Newton step
+    # (fluid and contact stiffness, newton.py); otherwise the contact Newton step: dry
+    # contact; JFO cavitation, whose content unknowns the step does not linearise; no
+    # cavitation (full Sommerfeld: the coupled steps did not converge on test_effects'
+    # scene); smooth steady films, where k ~ h^3 makes full Newton steps overshoot to
+    # h <= 0 (elastohydrodynamic line contacts, test_lubricated). Anderson mixing picks up what the
+    # contact step leaves out, and damps the transient's steps as before; a steady coupled
+    # Newton step is taken as it is (mixing it costs iterations: 5 -> 6-8 on Table 1).
+    coupled = (model.hydrodynamic and model.deformation is not None
+               and (model.squeeze is not None or (model.contact is not None and model.scene.effects.cavitation == "reynolds")))
+    mixer = None if coupled and model.squeeze is None else AndersonMixer(beta=1.0)
     change = 0.0
     balance_tol = tol if model.deformation is None else LOOSEST_BALANCE_TOLERANCE
     deformation_converged = False
@@ -497,8 +510,8 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
                 deformation_converged = True
                 break
             balance_tol = max(tol, min(LOOSEST_BALANCE_TOLERANCE, INEXACT_BALANCE_FACTOR * relative_change))
-            step = contact_newton_step(model, state, new_delta - delta)
-            new_delta = mixer.step(delta, delta + step)
+            step = (coupled_newton_step if coupled else contact_newton_step)(model, state, new_delta - delta)
+            new_delta = delta + step if mixer is None else mixer.step(delta, delta + step)
             # first-order prediction of the balanced position for the new deformation:
             # F + dF/dz dz + sum_j dF/dh_j (new_delta - delta)_j = applied force
             gradient = state.load_gradient

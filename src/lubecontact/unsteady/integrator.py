@@ -63,12 +63,6 @@ class Squeeze:
     def rate(self, expected_gap: np.ndarray) -> np.ndarray:
         return self.coefficient * expected_gap + self.history
 
-    def newton_step(self, model, state, residual):
-        """solver.contact_newton_step with the squeeze film's stiffness (coupling.py)."""
-        from .coupling import squeeze_newton_step
-
-        return squeeze_newton_step(model, state, residual)
-
 
 def bdf_coefficients(steps: list[float]) -> list[float]:
     """[c0, c1, ...] of dy/dt(t_{n+1}) ~ sum c_j y^{n+1-j} for the last steps

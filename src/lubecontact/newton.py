@@ -1,19 +1,22 @@
-"""Newton step of the deformation in a transient step, with the squeeze film's stiffness.
+"""Newton step of the deformation with the contact's and the fluid's stiffness (steady and
+transient solves).
 
-The steady coupled iteration (solver.coupled_solve) preconditions the deformation fixed point
-delta -> K(p + p_c) with the contact's stiffness only; the fluid's is left to Anderson
-mixing. The squeeze term makes the fluid pressure respond to the film as c0 ~ 1/dt (a short
-step nearly freezes the film), so at short steps the fixed point's gain is far above 1 and
-the mixing cannot tame it. Here the linearisation includes the fluid: with P'(v) the change
-of the total pressure for a film change v (contact -D v, fluid by the linearised Reynolds
-equation at the current cavitated set) and the rigid shift dz eliminated by the force
-balance, sum dA P'(v + dz) = 0,
+The coupled iteration (solver.coupled_solve) updates the deformation delta -> K(p + p_c)
+at the balanced position. Preconditioned with the contact's stiffness alone
+(solver.contact_newton_step) the fixed point converges linearly, at a rate set by the
+fluid's stiffness (0.2-0.4 per iteration on Table 1, 8-11 iterations on a 201^2 mesh). In a
+transient step the squeeze term makes the fluid pressure respond to the film as c0 ~ 1/dt,
+so at short steps that rate exceeds 1. Here the linearisation includes the fluid: with
+P'(v) the change of the total pressure for a film change v (contact -D v, fluid by the
+linearised Reynolds equation at the current cavitated set, with the squeeze term of a
+transient step) and the rigid shift dz eliminated by the force balance,
+sum dA P'(v + dz) = 0,
 
     step - K P'(step + dz(step)) = residual,      dz(v) = -sum dA P'(v) / sum dA P'(1),
 
-solved matrix-free by GMRES (each product: a few array operations on the faces and one
-back-substitution with the LU factors of the Reynolds solve). Without fluid pressure it is solver.contact_newton_step's
-equation.
+solved matrix-free by GMRES (each product: a few array operations on the faces, one
+back-substitution with the LU factors of the Reynolds solve and one FFT; 3-4 products per
+step on Table 1). Without fluid pressure it is solver.contact_newton_step's equation.
 """
 
 from __future__ import annotations
@@ -21,8 +24,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.sparse.linalg import LinearOperator, gmres
 
-from ..reynolds import _interior
-from ..solver import fluid_film
+from .reynolds import _interior
 
 # Relative residual of the GMRES solve of the Newton step: an inexact Newton step is enough,
 # the coupled iteration judges convergence on its own residuals.
@@ -31,21 +33,26 @@ NEWTON_RTOL = 1e-2
 
 def fluid_pressure_response(model, state):
     """v (ny, nx) m -> change of the fluid pressure (Pa) for the film change v, at the state's
-    cavitated set: dp_F = -A_FF^{-1} (dr/dh v)_F, r = A(k) p - b(h_T) the finite-volume
-    residual of reynolds.reynolds_system, differentiated face by face: with rough surfaces k
+    cavitated set: dp_F = -A_FF^{-1} (dr/dh v)_F, r = A(k) p - b(h_T) (+ dA dh_T/dt in a
+    transient step) the finite-volume residual of reynolds.reynolds_system, differentiated
+    face by face: with rough surfaces k
     and h_T of each face are evaluated at the face's film (solver.fluid_faces, percolation.py),
     with smooth ones they are face means of the nodal values (solver.fluid_film's slopes).
     A_FF^{-1} is applied with the LU factors the Reynolds solve used (its own or a nearby
     matrix's: an approximate Newton step, judged by the outer loop)."""
+    from .solver import fluid_film
+
     mesh, solution, squeeze = model.mesh, state.reynolds, model.squeeze
     speed = model.scene.operating.speed
     free = _interior(mesh.shape, mesh.line) & ~solution.cavitated
-    _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
     face_slopes = state.face_slopes
+    gap_slope = coefficient_slope = None
+    if face_slopes is None or squeeze is not None:  # nodal slopes: smooth faces, squeeze term
+        _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
     p = solution.pressure
     factors = None if solution.factor is None else solution.factor.factors
     gx, gy = mesh.dy / mesh.dx, mesh.dx / mesh.dy
-    squeeze_cell = squeeze.coefficient * mesh.nodal_area
+    squeeze_cell = None if squeeze is None else squeeze.coefficient * mesh.nodal_area * gap_slope
 
     def on_faces(v):
         """dk and dh_T of the x faces and dk of the y faces for the film change v."""
@@ -60,7 +67,7 @@ def fluid_pressure_response(model, state):
         if factors is None:
             return response
         dk_x, dg_x, dk_y = on_faces(v)
-        dr = squeeze_cell * gap_slope * v
+        dr = np.zeros(mesh.shape) if squeeze_cell is None else squeeze_cell * v
         flux = gx * dk_x * (p[:, :-1] - p[:, 1:]) + 0.5 * speed * mesh.dy * dg_x  # Poiseuille + Couette
         dr[:, :-1] += flux
         dr[:, 1:] -= flux
@@ -73,8 +80,10 @@ def fluid_pressure_response(model, state):
     return apply
 
 
-def squeeze_newton_step(model, state, residual: np.ndarray) -> np.ndarray:
-    """The deformation step of the module docstring (residual = K(p + p_c) - delta)."""
+def coupled_newton_step(model, state, residual: np.ndarray) -> np.ndarray:
+    """The deformation step of the module docstring (residual = K(p + p_c) - delta), for a
+    state with fluid pressure (state.reynolds); the plain fixed-point step when GMRES fails
+    (convergence is judged by the caller)."""
     if model.deformation is None:
         return residual
     mesh = model.mesh
