@@ -475,6 +475,12 @@ class Scene:
     def canonical_yaml(self) -> str:
         """Sorted keys, every default filled, floats written from repr(float): equal scenes
         give equal text however they were spelt. A measured surface appears by content."""
+        return self._canonical_yaml
+
+    @cached_property
+    def _canonical_yaml(self) -> str:
+        # built once per scene (the scene is frozen): each solve needs it for its hash and
+        # its dataset's attributes, ~7 ms each time (PyYAML's pure-Python emitter)
         data = {**self.to_dict(), "roughness": self.roughness.canonical_dict()}
         return yaml.safe_dump(data, sort_keys=True, default_flow_style=False)
 
