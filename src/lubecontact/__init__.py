@@ -3,19 +3,24 @@
 Public surface (see DESIGN.md): ``load_scene``, ``solve``, ``sweep``, ``rough_contact``, ``transient``.
 """
 
-from importlib.metadata import PackageNotFoundError, version
-
-try:
-    __version__ = version("lubecontact")
-except PackageNotFoundError:  # running from a source tree that is not installed
-    __version__ = "0+unknown"
-
 __all__ = ["__version__", "load_scene", "solve", "sweep", "rough_contact", "SceneError", "transient"]
 
 
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("lubecontact")
+    except PackageNotFoundError:  # running from a source tree that is not installed
+        return "0+unknown"
+
+
 def __getattr__(name):
-    # Lazy imports keep `import lubecontact` (and the CLI's --help) fast: numba and
-    # xarray load only when a solver piece is used.
+    # Lazy imports keep `import lubecontact` (and the CLI's --help) fast: scipy and xarray
+    # load only when a solver piece is used, importlib.metadata only for __version__.
+    if name == "__version__":
+        value = globals()["__version__"] = _version()  # looked up once
+        return value
     if name in ("load_scene", "SceneError", "Scene"):
         from . import scene
 

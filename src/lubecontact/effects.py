@@ -69,8 +69,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import cumulative_trapezoid
-from scipy.optimize import brentq
 
 from .electrical import alleviation_factor, contact_resistance
 from .materials import effective_modulus
@@ -115,6 +113,12 @@ def _clustered_grid(x_min: float, x_max: float, centres, scale: float) -> np.nda
     return np.unique(np.concatenate(parts))
 
 
+def _cumulative_trapezoid(y: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """scipy.integrate.cumulative_trapezoid(y, x, initial=0.0) of 1-D arrays, the same
+    operations (numpy only: importing scipy.integrate costs ~0.1 s at start-up)."""
+    return np.concatenate([[0.0], np.cumsum(np.diff(x) * (y[1:] + y[:-1]) / 2.0)])
+
+
 def reynolds_line_load(x, expected_gap, coefficient, speed: float) -> float:
     """Fluid load per unit length (N/m) of the 1D Reynolds equation (Eq. 1, no side leakage)
     d/dx(k dp/dx) = (U/2) dh_T/dx with p = 0 at the inlet x[0] and the Reynolds exit
@@ -124,8 +128,8 @@ def reynolds_line_load(x, expected_gap, coefficient, speed: float) -> float:
     G(x) = int (U h_T/2)/k - (U h_T(x)/2) int 1/k after the narrowest gap, q = U h_T(x_e)/2
     (h_T(x_e) interpolated linearly between the nodes around the root).
     """
-    a = cumulative_trapezoid(0.5 * speed * expected_gap / coefficient, x, initial=0.0)
-    b = cumulative_trapezoid(1.0 / coefficient, x, initial=0.0)
+    a = _cumulative_trapezoid(0.5 * speed * expected_gap / coefficient, x)
+    b = _cumulative_trapezoid(1.0 / coefficient, x)
     narrowest = int(np.argmin(expected_gap))
     g = a - 0.5 * speed * expected_gap * b
     ruptured = np.flatnonzero(g[narrowest:] <= 0.0)
@@ -167,6 +171,8 @@ def film_estimate(scene) -> float:
             h_in = h0 + max(x_min**2, x_max**2) / (2.0 * radius)
             w = 1.0 / (1.0 / w + 1.0 / (0.25 * mu * speed * length**3 * (1.0 / h0**2 - 1.0 / h_in**2)))
         return w
+
+    from scipy.optimize import brentq  # here: scipy.optimize costs ~0.1 s to import
 
     martin = martin_film(s)
     return math.exp(brentq(lambda log_h: math.log(load(math.exp(log_h)) / force),
@@ -240,6 +246,8 @@ class DryContact:
 
 def _root(f, guess: float, step: float, xtol: float) -> float:
     """Root of the decreasing function f: bracketed from ``guess`` by doubling steps, then Brent."""
+    from scipy.optimize import brentq
+
     a, fa = guess, f(guess)
     for _ in range(200):
         b = a + step if fa > 0.0 else a - step

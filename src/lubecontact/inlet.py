@@ -17,7 +17,6 @@ import math
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import brentq
 
 _FAR = 2000.0  # X of the inlet standing for a fully flooded one (1 - f ~ 6e-7)
 
@@ -43,4 +42,6 @@ def inlet_film_fraction(inlet: float) -> float:
 
 def required_inlet(deficit: float) -> float:
     """The X_in at which 1 - f(X_in) = ``deficit`` (0 < deficit < 0.2)."""
+    from scipy.optimize import brentq  # here: scipy.optimize costs ~0.1 s to import
+
     return brentq(lambda x: 1.0 - _load(x) / _load(_FAR) - deficit, 2.0, math.sqrt(10.0 / deficit), xtol=1e-3)

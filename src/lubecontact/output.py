@@ -5,8 +5,6 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from . import __version__
-
 # name: (units, long_name). Every variable a case writes is listed here, so that no
 # quantity leaves the model without its unit.
 SCALARS = {
@@ -53,6 +51,8 @@ def _attrs(table, name):
 
 def case_dataset(scene, scalars: dict, fields: dict | None, mesh, effects_run: dict, notes: str = "") -> xr.Dataset:
     """Assemble one case's Dataset. ``scalars`` must hold exactly the keys of SCALARS."""
+    from . import __version__  # looked up on first use (importlib.metadata)
+
     missing = set(SCALARS) - set(scalars)
     if missing:
         raise KeyError(f"case output lacks {sorted(missing)}")
@@ -84,6 +84,8 @@ def cf_ready(dataset: xr.Dataset) -> tuple[xr.Dataset, dict]:
     import sys
     from datetime import datetime, timezone
     from pathlib import Path
+
+    from . import __version__
 
     stamp = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     line = f"{stamp} written by lubecontact {__version__} ({Path(sys.argv[0]).name or 'python'})"
