@@ -35,7 +35,7 @@ def main():
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--speed", type=float, default=1.0)
     args = parser.parse_args()
-    lc.solve(lc.load_scene("config/scenes/table1.yaml", {"mesh.nx": 15, "mesh.ny": 11}))  # warm-up: imports, numba
+    lc.solve(lc.load_scene("config/scenes/table1.yaml", {"mesh.nx": 15, "mesh.ny": 11}))  # warm-up: imports
     print(f"{'mesh':>8} {'fluid cold R':>13} {'fluid cold JFO':>15} {'fluid warm R':>13} {'fluid warm JFO':>15} "
           f"{'coupled R':>10} {'coupled JFO':>12}")
     for n in args.nodes:

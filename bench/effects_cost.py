@@ -164,7 +164,7 @@ def main(argv=None) -> int:
     args = p.parse_args(argv)
     sizes = (51, 101) if args.quick else (51, 201)
     start = time.perf_counter()
-    lc.solve(lc.load_scene(TABLE1, {"mesh.nx": 21, "mesh.ny": 11}))  # compile / load numba kernels first
+    lc.solve(lc.load_scene(TABLE1, {"mesh.nx": 21, "mesh.ny": 11}))  # imports first
     lines = [f"Measured {time.strftime('%Y-%m-%d')} on {platform.node()} ({platform.processor() or platform.machine()}, "
              f"Python {sys.version.split()[0]}, numpy {np.__version__}), lubecontact {lc.__version__}; "
              f"`python bench/effects_cost.py{' --quick' if args.quick else ''}`.", ""]

@@ -14,7 +14,7 @@ processes). bench/README.md tells what each number means; bench/RESULTS.md keeps
 measured on the project's machine.
 
 Each mesh runs in its own Python process, so its peak resident memory (getrusage) is its
-own: a warm-up solve first (imports, numba cache, FFT plans), then ``repeats`` timed solves
+own: a warm-up solve first (imports, FFT plans), then ``repeats`` timed solves
 per speed (fewer on meshes of 401^2 and more), each from a cold start as the workflow solves
 its cases; the median is reported. In that process the LU factorisations and Reynolds solves
 of each point are counted by wrapping ``lubecontact.reynolds._factorize`` and
@@ -162,7 +162,7 @@ def child_mesh(n: int, repeats: int) -> dict:
 
     counts = Counts().install()
     scene = lubecontact.load_scene(SCENE, {"mesh.nx": n, "mesh.ny": n})
-    lubecontact.solve(scene.replace({"mesh.nx": 15, "mesh.ny": 11}))  # warm-up: JIT cache, imports
+    lubecontact.solve(scene.replace({"mesh.nx": 15, "mesh.ny": 11}))  # warm-up: imports
     w0 = time.perf_counter()
     lubecontact.solve(scene)  # warm-up on this mesh: FFT plans, first-touch memory
     log(f"  {n}x{n}: warm-up solve {time.perf_counter() - w0:.2f} s; {repeats} timed solve(s) per speed")
@@ -497,9 +497,8 @@ def markdown(result: dict, previous: dict | None) -> str:
               f"- the whole process seen from outside (interpreter start to exit, two solves): "
               f"{s51['process_wall_s']:.2f} s wall, {s51['process_cpu_s']:.2f} s CPU",
               f"- import lubecontact + load a scene: {s['import_and_scene_s']:.2f} s",
-              f"- first solve of a 15 x 11 case, numba cache on disk: {s['first_solve_s']:.2f} s "
-              f"(second: {s['second_solve_s']:.3f} s)",
-              f"- first solve with an empty numba cache (JIT compilation): {result['jit']['first_solve_s']:.2f} s"]
+              f"- first solve of a 15 x 11 case: {s['first_solve_s']:.2f} s "
+              f"(second: {s['second_solve_s']:.3f} s)"]
 
     if "sweep" in result:
         w = result["sweep"]
@@ -555,11 +554,8 @@ def main(argv=None) -> int:
     result = {"timestamp": stamp, "machine": machine(), "repeats": repeats, "meshes": {}}
     log("start-up ...")
     result["startup"] = run_child(["--child-startup"])
-    with tempfile.TemporaryDirectory(prefix="lubecontact-numba-") as cache:
-        result["jit"] = run_child(["--child-startup"], env={**os.environ, "NUMBA_CACHE_DIR": cache})
     result["startup_51"] = startup_51()
-    log(f"start-up: tiny case {result['startup']}; empty numba cache {result['jit']}; "
-        f"51^2: {result['startup_51']['total_s']:.2f} s")
+    log(f"start-up: tiny case {result['startup']}; 51^2: {result['startup_51']['total_s']:.2f} s")
     for n in meshes:
         r = mesh_repeats(n, repeats)
         log(f"{n}x{n} ({r} repeat(s)) ...")

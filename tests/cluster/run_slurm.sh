@@ -96,7 +96,7 @@ fail_with_log() {  # message, log file
 copy_workflow() {  # a fresh copy of the workflow without results, caches or the venv
     mkdir -p "$1"
     tar -C "$SOURCE" --exclude=./.venv --exclude=./.git --exclude=./results --exclude=./.snakemake \
-        --exclude=./.pytest_cache --exclude=./.hypothesis --exclude=./.numba_cache \
+        --exclude=./.pytest_cache --exclude=./.hypothesis \
         --exclude=./bench/out --exclude=__pycache__ --exclude='*.egg-info' -cf - . | tar -C "$1" -xf -
 }
 
@@ -126,7 +126,7 @@ copy_workflow "$WORK/local"
 LOCAL_PROFILE=none
 [ -d "$WORK/local/workflow/profiles/default" ] && LOCAL_PROFILE=workflow/profiles/default
 t0=$(now)
-NUMBA_CACHE_DIR="$WORK/numba-local" smk "$WORK/local" "$WORK/local.log" --workflow-profile "$LOCAL_PROFILE" \
+smk "$WORK/local" "$WORK/local.log" --workflow-profile "$LOCAL_PROFILE" \
     --configfile "$CONFIG" --cores "$(nproc)" || fail_with_log "the local reference run failed" "$WORK/local.log"
 slurm_log "local reference run: $(elapsed "$t0") s"
 

@@ -10,10 +10,6 @@
 # Snakemake itself (--unlock, rerun) only the missing cases are solved. A job that fails
 # while Snakemake runs has its outputs removed by Snakemake and reruns whole; a retry gets
 # the runtime scaled by the attempt number (e.g. after hitting a SLURM time limit).
-#
-# numba (cache=True) writes its cache files atomically (temp file + rename), so parallel
-# jobs on one machine at worst compile the same kernel twice. On a cluster whose file
-# system is shared between nodes, give each node its own NUMBA_CACHE_DIR.
 
 
 for _chunk in CHUNKS:
