@@ -31,8 +31,13 @@ rule transient_case:
         f"{RESULTS}/logs/transient/{{case}}.log",
     threads: 1
     resources:
-        runtime=60,
+        runtime=30,  # minutes; the default study's longest case takes a few
         mem_mb=2000,
+    # bundled with the solve jobs on a cluster (group-components: solve: N in the SLURM
+    # profile): each transient case alone was one sbatch submission, 28 of the default
+    # study's 32; local runs ignore groups
+    group:
+        "solve"
     conda:
         "../envs/lubecontact.yaml"
     script:
