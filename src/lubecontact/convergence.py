@@ -256,7 +256,7 @@ def run_study(spec: Mapping, log: Callable[[str], None] = print) -> xr.Dataset:
     repeats, budget = int(timing.get("repeats", 1)), float(timing.get("budget", math.inf))
     warm = time.perf_counter()
     lubecontact.solve(base.replace({"mesh.nx": 15, "mesh.ny": 11}))
-    log(f"warm-up solve (imports, JIT cache): {time.perf_counter() - warm:.2f} s")
+    log(f"warm-up solve (imports): {time.perf_counter() - warm:.2f} s")
 
     speeds = [float(s) for s in spec["speeds"]]
     results: dict[str, dict] = {}
