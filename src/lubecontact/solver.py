@@ -395,6 +395,25 @@ def contact_newton_step(model: Model, state: State, residual: np.ndarray) -> np.
     return step.reshape(shape)
 
 
+def deformation_stepper(model: Model):
+    """(step function, AndersonMixer or None) of the coupled iteration's deformation update.
+
+    With Reynolds fluid pressure between rough surfaces, and in every transient step (its
+    squeeze stiffness dwarfs the rest), the coupled Newton step (fluid and contact
+    stiffness, newton.py); otherwise the contact Newton step: dry contact; JFO cavitation,
+    whose content unknowns the step does not linearise; no cavitation (full Sommerfeld: the
+    coupled steps did not converge on test_effects' scene); smooth steady films, where
+    k ~ h^3 makes full Newton steps overshoot to h <= 0 (elastohydrodynamic line contacts,
+    test_lubricated). Anderson mixing picks up what the contact step leaves out, and damps
+    the transient's steps as before; a steady coupled Newton step is taken as it is (mixing
+    it costs iterations: 5 -> 6-8 on Table 1).
+    """
+    coupled = (model.hydrodynamic and model.deformation is not None
+               and (model.squeeze is not None or (model.contact is not None and model.scene.effects.cavitation == "reynolds")))
+    mixer = None if coupled and model.squeeze is None else AndersonMixer(beta=1.0)
+    return (coupled_newton_step if coupled else contact_newton_step), mixer
+
+
 # While the deformation is still far from converged, the force balance need not be exact:
 # the inner tolerance follows the outer progress (an inexact Newton-type schedule) and is
 # tightened to ``solver.tolerance`` for the final iterate.
@@ -477,18 +496,7 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
         z = initial.get("z")
         stiffness = initial.get("stiffness")
         cavitated = initial.get("cavitated")
-    # With Reynolds fluid pressure between rough surfaces, and in every transient step (its
-    # squeeze stiffness dwarfs the rest), the deformation takes the coupled Newton step
-    # (fluid and contact stiffness, newton.py); otherwise the contact Newton step: dry
-    # contact; JFO cavitation, whose content unknowns the step does not linearise; no
-    # cavitation (full Sommerfeld: the coupled steps did not converge on test_effects'
-    # scene); smooth steady films, where k ~ h^3 makes full Newton steps overshoot to
-    # h <= 0 (elastohydrodynamic line contacts, test_lubricated). Anderson mixing picks up what the
-    # contact step leaves out, and damps the transient's steps as before; a steady coupled
-    # Newton step is taken as it is (mixing it costs iterations: 5 -> 6-8 on Table 1).
-    coupled = (model.hydrodynamic and model.deformation is not None
-               and (model.squeeze is not None or (model.contact is not None and model.scene.effects.cavitation == "reynolds")))
-    mixer = None if coupled and model.squeeze is None else AndersonMixer(beta=1.0)
+    deformation_step, mixer = deformation_stepper(model)
     change = 0.0
     balance_tol = tol if model.deformation is None else LOOSEST_BALANCE_TOLERANCE
     deformation_converged = False
@@ -510,7 +518,7 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
                 deformation_converged = True
                 break
             balance_tol = max(tol, min(LOOSEST_BALANCE_TOLERANCE, INEXACT_BALANCE_FACTOR * relative_change))
-            step = (coupled_newton_step if coupled else contact_newton_step)(model, state, new_delta - delta)
+            step = deformation_step(model, state, new_delta - delta)
             new_delta = delta + step if mixer is None else mixer.step(delta, delta + step)
             # first-order prediction of the balanced position for the new deformation:
             # F + dF/dz dz + sum_j dF/dh_j (new_delta - delta)_j = applied force
