@@ -406,12 +406,18 @@ def deformation_stepper(model: Model):
     k ~ h^3 makes full Newton steps overshoot to h <= 0 (elastohydrodynamic line contacts,
     test_lubricated). Anderson mixing picks up what the contact step leaves out, and damps
     the transient's steps as before; a steady coupled Newton step is taken as it is (mixing
-    it costs iterations: 5 -> 6-8 on Table 1).
+    it costs iterations: 5 -> 6-8 on Table 1), until it stalls (NEWTON_STALL_FACTOR).
     """
     coupled = (model.hydrodynamic and model.deformation is not None
                and (model.squeeze is not None or (model.contact is not None and model.scene.effects.cavitation == "reynolds")))
     mixer = None if coupled and model.squeeze is None else AndersonMixer(beta=1.0)
     return (coupled_newton_step if coupled else contact_newton_step), mixer
+
+
+# Newton steps cut the deformation change by far more than this factor per iteration; an
+# iteration whose change exceeds it times the smallest change so far has stalled, and the
+# coupled iteration continues with the mixed contact step (coupled_solve).
+NEWTON_STALL_FACTOR = 0.5
 
 
 # While the deformation is still far from converged, the force balance need not be exact:
@@ -497,6 +503,7 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
         stiffness = initial.get("stiffness")
         cavitated = initial.get("cavitated")
     deformation_step, mixer = deformation_stepper(model)
+    smallest_change = np.inf
     change = 0.0
     balance_tol = tol if model.deformation is None else LOOSEST_BALANCE_TOLERANCE
     deformation_converged = False
@@ -518,6 +525,12 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
                 deformation_converged = True
                 break
             balance_tol = max(tol, min(LOOSEST_BALANCE_TOLERANCE, INEXACT_BALANCE_FACTOR * relative_change))
+            if mixer is None and relative_change > NEWTON_STALL_FACTOR * smallest_change:
+                # the coupled Newton steps stalled: near a fold the cavitated set can toggle
+                # between two states (Table 1, 51^2, 0.0158 m/s: 650 <-> 654 nodes); the
+                # mixed contact step converges there (deformation_stepper)
+                deformation_step, mixer = contact_newton_step, AndersonMixer(beta=1.0)
+            smallest_change = min(smallest_change, relative_change)
             step = deformation_step(model, state, new_delta - delta)
             new_delta = delta + step if mixer is None else mixer.step(delta, delta + step)
             # first-order prediction of the balanced position for the new deformation:
