@@ -140,3 +140,22 @@ def test_force_gradient_matches_finite_differences(speed):
     bump = np.zeros(model.mesh.shape)
     bump[j] = step
     assert gradient[j] == pytest.approx((force(bump) - force(-bump)) / (2 * step), rel=1e-4)
+
+
+def test_domain_study_stays_inside_the_cylinder():
+    """The film-following inlet at 10 m/s is 6.3 mm of R = 10 mm: the domain study's scaled
+    domains stop at DOMAIN_RADIUS_FRACTION R (Eq. 4 needs |x| < R), in whole cells of the
+    reference mesh, and every one of them is a valid scene (the default figure build failed
+    on the 3x domain before)."""
+    import lubecontact as lc
+
+    spec = cv.study_spec(TABLE1.replace("scenes/table1.yaml", "accuracy.yaml"), {"speeds": [0.1, 10.0]})
+    radius = lc.load_scene(TABLE1).geometry.radius
+    base = lc.load_scene(TABLE1)
+    points = [p for p in cv.study_points(spec) if p["part"] == "domain"]
+    for point in points:
+        o = point["overrides"]
+        assert -cv.DOMAIN_RADIUS_FRACTION * radius <= o["mesh.x_min"] < o["mesh.x_max"] <= cv.DOMAIN_RADIUS_FRACTION * radius
+        base.replace({"operating.speed": point["speed"], **o})  # raises SceneError if invalid
+    slow = {p["key"]: p["overrides"]["mesh.x_min"] for p in points if p["speed"] == 0.1}
+    assert slow[3.0] == pytest.approx(3.0 * slow[1.0], rel=0.02)  # far from the radius: scaled as asked
