@@ -414,10 +414,13 @@ def deformation_stepper(model: Model):
     return (coupled_newton_step if coupled else contact_newton_step), mixer
 
 
-# Newton steps cut the deformation change by far more than this factor per iteration; an
-# iteration whose change exceeds it times the smallest change so far has stalled, and the
-# coupled iteration continues with the mixed contact step (coupled_solve).
+# Newton steps cut the deformation change by far more than this factor per iteration. After
+# NEWTON_STALL_ITERATIONS iterations in a row that do not cut the smallest change so far by
+# it, the coupled Newton iteration has stalled and continues with the mixed contact step
+# (coupled_solve). One worse step is no stall: far from the solution (a cold start on the
+# coarsest mesh) Newton's change can grow once before it falls.
 NEWTON_STALL_FACTOR = 0.5
+NEWTON_STALL_ITERATIONS = 3
 
 
 # While the deformation is still far from converged, the force balance need not be exact:
@@ -503,7 +506,7 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
         stiffness = initial.get("stiffness")
         cavitated = initial.get("cavitated")
     deformation_step, mixer = deformation_stepper(model)
-    smallest_change = np.inf
+    smallest_change, stalled = np.inf, 0
     change = 0.0
     balance_tol = tol if model.deformation is None else LOOSEST_BALANCE_TOLERANCE
     deformation_converged = False
@@ -525,12 +528,15 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
                 deformation_converged = True
                 break
             balance_tol = max(tol, min(LOOSEST_BALANCE_TOLERANCE, INEXACT_BALANCE_FACTOR * relative_change))
-            if mixer is None and relative_change > NEWTON_STALL_FACTOR * smallest_change:
+            if relative_change <= NEWTON_STALL_FACTOR * smallest_change:
+                smallest_change, stalled = relative_change, 0
+            else:
+                stalled += 1
+            if mixer is None and stalled >= NEWTON_STALL_ITERATIONS:
                 # the coupled Newton steps stalled: near a fold the cavitated set can toggle
                 # between two states (Table 1, 51^2, 0.0158 m/s: 650 <-> 654 nodes); the
                 # mixed contact step converges there (deformation_stepper)
                 deformation_step, mixer = contact_newton_step, AndersonMixer(beta=1.0)
-            smallest_change = min(smallest_change, relative_change)
             step = deformation_step(model, state, new_delta - delta)
             new_delta = delta + step if mixer is None else mixer.step(delta, delta + step)
             # first-order prediction of the balanced position for the new deformation:
