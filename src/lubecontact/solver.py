@@ -416,7 +416,7 @@ def deformation_stepper(model: Model):
 
 # Newton steps cut the deformation change by far more than this factor per iteration. After
 # NEWTON_STALL_ITERATIONS iterations in a row that do not cut the smallest change so far by
-# it, the coupled Newton iteration has stalled and continues with the mixed contact step
+# it, the coupled Newton iteration has stalled and starts again with the mixed contact step
 # (coupled_solve). One worse step is no stall: far from the solution (a cold start on the
 # coarsest mesh) Newton's change can grow once before it falls.
 NEWTON_STALL_FACTOR = 0.5
@@ -507,6 +507,7 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
         cavitated = initial.get("cavitated")
     deformation_step, mixer = deformation_stepper(model)
     smallest_change, stalled = np.inf, 0
+    restart = (delta.copy(), z, stiffness, cavitated)
     change = 0.0
     balance_tol = tol if model.deformation is None else LOOSEST_BALANCE_TOLERANCE
     deformation_converged = False
@@ -534,9 +535,15 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
                 stalled += 1
             if mixer is None and stalled >= NEWTON_STALL_ITERATIONS:
                 # the coupled Newton steps stalled: near a fold the cavitated set can toggle
-                # between two states (Table 1, 51^2, 0.0158 m/s: 650 <-> 654 nodes); the
-                # mixed contact step converges there (deformation_stepper)
+                # between two states (Table 1, 51^2, 0.0158 m/s: 650 <-> 654 nodes). Start
+                # again from this level's start with the mixed contact step
+                # (deformation_stepper), the iteration that converged there before the
+                # Newton step existed; from where Newton stalled it can wander instead
+                # (Fig. 12, F = 30 N: 200 iterations)
                 deformation_step, mixer = contact_newton_step, AndersonMixer(beta=1.0)
+                delta, z, stiffness, cavitated = restart[0].copy(), *restart[1:]
+                reynolds, balance_tol = None, LOOSEST_BALANCE_TOLERANCE
+                continue
             step = deformation_step(model, state, new_delta - delta)
             new_delta = delta + step if mixer is None else mixer.step(delta, delta + step)
             # first-order prediction of the balanced position for the new deformation:
