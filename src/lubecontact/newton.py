@@ -35,20 +35,17 @@ def fluid_pressure_response(model, state):
     """v (ny, nx) m -> change of the fluid pressure (Pa) for the film change v, at the state's
     cavitated set: dp_F = -A_FF^{-1} (dr/dh v)_F, r = A(k) p - b(h_T) (+ dA dh_T/dt in a
     transient step) the finite-volume residual of reynolds.reynolds_system, differentiated
-    face by face: with rough surfaces k
-    and h_T of each face are evaluated at the face's film (solver.fluid_faces, percolation.py),
-    with smooth ones they are face means of the nodal values (solver.fluid_film's slopes).
+    face by face: with rough surfaces k and h_T of each face are evaluated at the face's
+    film (solver.fluid_faces, percolation.py), with smooth ones they are face means of the
+    nodal values (solver.fluid_slopes).
     A_FF^{-1} is applied with the LU factors the Reynolds solve used (its own or a nearby
     matrix's: an approximate Newton step, judged by the outer loop)."""
-    from .solver import fluid_film
+    from .solver import fluid_slopes
 
     mesh, solution, squeeze = model.mesh, state.reynolds, model.squeeze
     speed = model.scene.operating.speed
     free = _interior(mesh.shape, mesh.line) & ~solution.cavitated
-    face_slopes = state.face_slopes
-    gap_slope = coefficient_slope = None
-    if face_slopes is None or squeeze is not None:  # nodal slopes: smooth faces, squeeze term
-        _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+    face_slopes, gap_slope, coefficient_slope = fluid_slopes(model, state)
     p = solution.pressure
     factors = None if solution.factor is None else solution.factor.factors
     gx, gy = mesh.dy / mesh.dx, mesh.dx / mesh.dy

@@ -16,11 +16,11 @@ Algorithm (only the enabled effects are assembled and run):
    once bracketed when a step misbehaves (the contact law has a jump at 1.9 omega_c).
 2. Recompute the deformation from the pressures at that z and take a Newton step of the
    fixed point delta -> K(p + p_c): with Reynolds fluid pressure between rough surfaces the
-   coupled step of newton.py ((I - K P') step = K(p + p_c) - delta, P' the linearised contact and fluid
-   pressure with the force balance kept, by GMRES with the Reynolds factors and the FFT
-   operator; 3-6 iterations on Table 1 where the contact-only step took 4-11). Without
-   fluid (or with JFO or no cavitation) the step is preconditioned by the contact part of the
-   Jacobian only, (I + K D) step = K(p + p_c) - delta with D = -dp_c/dh >= 0 (a Newton
+   coupled step of newton.py ((I - K P') step = K(p + p_c) - delta, P' the linearised
+   contact and fluid pressure with the force balance kept, by GMRES with the Reynolds
+   factors and the FFT operator; 3-6 iterations on Table 1 where the contact-only step took
+   4-11). Without fluid (or with JFO or no cavitation) the step is preconditioned by the
+   contact part of the Jacobian only, (I + K D) step = K(p + p_c) - delta with D = -dp_c/dh >= 0 (a Newton
    step for the dry contact), and accelerated by Anderson mixing (also for smooth steady
    films, where full coupled Newton steps overshoot to h <= 0). The next z
    is predicted to first order from the load gradient, so a balance near convergence takes
@@ -275,6 +275,17 @@ def _film_scale(model: Model) -> float:
     return martin_film(model.scene)
 
 
+def fluid_slopes(model: Model, state: State):
+    """(face slopes, nodal dh_T/dh, nodal dk/dh) of the film the fluid saw at ``state``, for
+    the linearised Reynolds residual (force_gradient, newton.fluid_pressure_response): the
+    face slopes (percolation.FaceFilm; None for smooth surfaces) and the nodal slopes of
+    fluid_film where they are used (smooth faces, a transient's squeeze term), else None."""
+    if state.face_slopes is not None and model.squeeze is None:
+        return state.face_slopes, None, None
+    _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+    return state.face_slopes, gap_slope, coefficient_slope
+
+
 def force_gradient(model: Model, state: State) -> np.ndarray:
     """dF/dh_j, N/m (ny, nx): how the carried load changes with the film at each node, at the
     state's cavitated set: contact dp_c/dh times the nodal area plus the Reynolds adjoint
@@ -283,10 +294,7 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
     if state.contact_slope is not None:
         gradient += state.contact_slope * model.mesh.nodal_area
     if state.reynolds is not None:
-        face_slopes = state.face_slopes
-        gap_slope = coefficient_slope = None
-        if face_slopes is None or model.squeeze is not None:  # nodal slopes: smooth faces, squeeze term
-            _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+        face_slopes, gap_slope, coefficient_slope = fluid_slopes(model, state)
         squeeze = {} if model.squeeze is None else {"squeeze_slope": model.squeeze.coefficient * gap_slope}
         if face_slopes is not None:  # rough surfaces: the film on the faces (percolation.py)
             gap_slope, coefficient_slope = None, face_slopes
@@ -408,8 +416,8 @@ def deformation_stepper(model: Model):
     the transient's steps as before; a steady coupled Newton step is taken as it is (mixing
     it costs iterations: 5 -> 6-8 on Table 1), until it stalls (NEWTON_STALL_FACTOR).
     """
-    coupled = (model.hydrodynamic and model.deformation is not None
-               and (model.squeeze is not None or (model.contact is not None and model.scene.effects.cavitation == "reynolds")))
+    rough_reynolds = model.contact is not None and model.scene.effects.cavitation == "reynolds"
+    coupled = model.hydrodynamic and model.deformation is not None and (model.squeeze is not None or rough_reynolds)
     mixer = None if coupled and model.squeeze is None else AndersonMixer(beta=1.0)
     return (coupled_newton_step if coupled else contact_newton_step), mixer
 
