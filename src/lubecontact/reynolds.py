@@ -209,7 +209,7 @@ class ExtendedFactors:
         where = position[target]
         self.shared = where >= 0
         self.into = where[self.shared]
-        self.same = source.size == target.size and bool(self.shared.all()) and np.array_equal(source, target)
+        self.same = np.array_equal(source, target)
         self.changes = int(np.count_nonzero(~self.shared)) + (source.size - self.into.size)
         self.inverse_diagonal = 1.0 / diagonal[~self.shared]
 
@@ -224,17 +224,17 @@ class ExtendedFactors:
         return solution
 
 
-def _preconditioned_cg(block, rhs, preconditioner, changes=0):
+def _preconditioned_cg(block, rhs, preconditioner):
     """x with block x = rhs by conjugate gradients preconditioned with ``preconditioner``
-    (LU factors of a nearby SPD matrix, on a set that differs by ``changes`` nodes); None
-    when it does not converge fast (see REUSE_CG_*)."""
+    (ExtendedFactors: LU factors of a nearby SPD matrix, on a set that differs by its
+    ``changes`` nodes); None when it does not converge fast (see REUSE_CG_*)."""
     x = np.zeros_like(rhs)
     r = rhs.copy()
     target = REUSE_CG_TOLERANCE * np.linalg.norm(rhs)
     start = np.linalg.norm(r)
     if start <= target:
         return x
-    extra = REUSE_CG_STEPS_PER_CHANGE * changes
+    extra = REUSE_CG_STEPS_PER_CHANGE * preconditioner.changes
     z = preconditioner.solve(r)
     d = z.copy()
     rz = r @ z
@@ -297,7 +297,7 @@ class BlockInverse:
 
     def solve(self, rhs):
         if self.lu is None:
-            x = _preconditioned_cg(self.block, rhs, self.preconditioner, self.preconditioner.changes)
+            x = _preconditioned_cg(self.block, rhs, self.preconditioner)
             if x is not None:
                 return x
             self.lu = _factorize(self.block)
