@@ -8,16 +8,19 @@ import math
 import numpy as np
 import xarray as xr
 
-# name: (units, long_name), along ``time``
+from ..output import SCALARS as CASE
+
+# name: (units, long_name), along ``time``; a quantity that means what it means in a case
+# takes the case's entry (output.SCALARS)
 SERIES = {
-    "speed": ("m s-1", "sliding speed U of the block"),
+    "speed": CASE["speed"],
     "contact_resistance": ("ohm", "electrical contact resistance: the whole path (electrical/path.py)"),
-    "min_film_thickness": ("m", "minimum mean-plane separation h over the mesh (may be negative)"),
-    "central_film_thickness": ("m", "mean-plane separation h at x = 0, y = 0 (may be negative)"),
+    "min_film_thickness": CASE["min_film_thickness"],
+    "central_film_thickness": CASE["central_film_thickness"],
     "fluid_force": ("N", "load carried by the fluid film (squeeze and wedge)"),
-    "contact_force": ("N", "load carried by asperity contact (Eq. 11 summed over nodes)"),
+    "contact_force": CASE["contact_force"],
     "friction_coefficient": ("1", "friction coefficient (boundary friction of solid load + |fluid shear|) / applied force"),
-    "separation": ("m", "vertical position z of the cylinder (Eq. 3)"),
+    "separation": CASE["separation"],
     "real_contact_area": ("m2", "real area of asperity contact"),
     "step_converged": ("1", "1 if the coupled solve of the step met its tolerances"),
     "iterations": ("1", "outer (deformation) iterations of the step's coupled solve"),
