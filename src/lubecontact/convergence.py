@@ -469,7 +469,9 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
                          f"{table[f'{q}_order'].values[i]:.3g} | {_pct(table[f'{q}_gci'].values[i])} | "
                          f"{'yes' if table[f'{q}_asymptotic'].values[i] == 1 else 'no'} |")
         for part, what in (("domain", f"domain length (x), at the spacing of the {table.attrs.get('domain_mesh')}² mesh; "
-                                      "change against the largest domain"),
+                                      "change against the largest domain (domains stop at "
+                                      f"{DOMAIN_RADIUS_FRACTION:g} R, Eq. 4 needs |x| < R: rows with the "
+                                      "same x_min were capped there)"),
                            ("tolerance", f"solver tolerance on the {table.attrs.get('tolerance_mesh')}² mesh; "
                                          "change against the tightest")):
             if part not in table.dims:
