@@ -34,10 +34,11 @@ they are held at p = 0 and reported as cavitated.
 Cost: each step is a sparse LU factorisation of A_FF (SuperLU, minimum-degree ordering),
 which dominates a coupled solve on fine meshes. Three things avoid it: ``reuse`` (a solve a
 little earlier in the coupled iteration, on the same pressurised set or one a few nodes
-away: CG preconditioned with its factors, BlockInverse), the same for an active-set step
-whose set differs from the step before by a few nodes (ExtendedFactors), and
-``load_sensitivity`` (dW/dh by one back-substitution, so the force balance takes Newton
-steps instead of extra Reynolds solves).
+away: CG preconditioned with its factors, the set change eliminated exactly, BlockInverse
+and ExtendedFactors), the same for an active-set step whose set differs from the step
+before by a few nodes, and ``load_sensitivity`` (dW/dh by one back-substitution, so the
+force balance takes Newton steps instead of extra Reynolds solves). The factorisations
+that remain on a mesh share one elimination order (_factorize).
 """
 
 from __future__ import annotations
@@ -65,22 +66,16 @@ WARM_START_STEPS = 4
 # Reuse of LU factors (``reuse``): conjugate gradients on A_FF preconditioned by the factors
 # of a nearby matrix stop at this relative residual (2-norm), and give up (a new
 # factorisation is made) after REUSE_CG_STEPS steps, or after REUSE_CG_CHECK steps that have
-# not cut the residual by REUSE_CG_CHECK_FACTOR. When the factors belong to a pressurised
-# set that differs from this one by c nodes (ExtendedFactors), the preconditioner differs
-# from A_FF^-1 by a perturbation of rank ~2c, which CG takes ~2c more steps to resolve: both
-# limits grow by REUSE_CG_STEPS_PER_CHANGE c. A back-substitution costs 1/25-1/40 of a
-# factorisation (2.6k-160k unknowns) and CG needs ~c more of them, so within one active-set
-# loop (whose intermediate sets are solved once) sets that differ by more than
-# REUSE_MAX_CHANGES nodes are factorised; across solves (the set then serves the remaining
-# evaluations, ~2 solves each) borrowed factors keep serving only while the set differs
-# from theirs by at most REUSE_KEEP_CHANGES nodes.
+# not cut the residual by REUSE_CG_CHECK_FACTOR. Factors of a pressurised set that differs
+# from this one by c nodes serve through c back-substitutions (ExtendedFactors), so they
+# are used up to REUSE_MAX_CHANGES nodes away: a factorisation costs 15-40
+# back-substitutions (2.6k-160k unknowns; 12 left Table 1 at 201^2 with 2-4 factorisations
+# on the finest mesh instead of 4-5, and 8 or 20 were no faster: bench/RESULTS.md).
 REUSE_CG_TOLERANCE = 1e-12
 REUSE_CG_STEPS = 12
 REUSE_CG_CHECK = 3
 REUSE_CG_CHECK_FACTOR = 1e-3
-REUSE_CG_STEPS_PER_CHANGE = 2
-REUSE_MAX_CHANGES = 8
-REUSE_KEEP_CHANGES = 3
+REUSE_MAX_CHANGES = 12
 
 
 @dataclass
@@ -191,36 +186,131 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_
     return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown)
 
 
-def _factorize(block):
-    return splu(block, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+class OrderedFactors:
+    """LU factors of a block under a given symmetric elimination order ``order`` (block
+    positions, first eliminated first): SuperLU on the permuted block without an ordering
+    pass of its own; ``solve`` as scipy's SuperLU on the unpermuted block."""
+
+    def __init__(self, block, order):
+        self.order = order
+        self.lu = splu(block[order][:, order].tocsc(), permc_spec="NATURAL", **_SPD_OPTIONS)
+
+    def solve(self, rhs):
+        solution = np.empty_like(rhs)
+        solution[self.order] = self.lu.solve(rhs[self.order])
+        return solution
+
+
+_SPD_OPTIONS = {"diag_pivot_thresh": 0.0, "options": {"SymmetricMode": True}}
+
+
+# A factorisation reorders (minimum degree) when more than this fraction of its nodes were
+# not in the set the ranking was made for: they are eliminated last, which adds fill.
+REORDER_FRACTION = 0.01
+
+
+def _factorize(block, index, ranking=None):
+    """(LU factors of the SPD block on the nodes ``index`` (flat mesh indices), ranking).
+
+    Without ``ranking`` SuperLU orders the block by minimum degree on A + A^T and the
+    ranking (elimination position of each flat mesh index, inf where it has none) records
+    that order. With one, the block is eliminated in the ranked order (nodes without a rank
+    last; at most REORDER_FRACTION of them, else it is reordered) and the ordering pass, 15-20 % of a factorisation on 29k-160k unknowns with the
+    same fill (bench/RESULTS.md), is skipped: consecutive factorisations of a coupled
+    iteration share a mesh and differ by a few free-boundary nodes, so one minimum-degree
+    order serves them all (the fill grows by a fraction of a per cent for a set 50 nodes
+    away)."""
+    if ranking is not None:
+        ranks = _ranks(ranking, index)
+        if np.count_nonzero(np.isinf(ranks)) <= REORDER_FRACTION * index.size:
+            return OrderedFactors(block, np.argsort(ranks, kind="stable")), ranking
+    lu = splu(block, permc_spec="MMD_AT_PLUS_A", **_SPD_OPTIONS)
+    ranking = np.full(int(index.max(initial=-1)) + 1, np.inf)
+    ranking[index] = lu.perm_c
+    return lu, ranking
+
+
+def _ranks(ranking, index):
+    """Rank of each node of ``index`` in ``ranking`` (inf for nodes it does not cover)."""
+    ranks = np.full(index.size, np.inf)
+    covered = index < ranking.size
+    ranks[covered] = ranking[index[covered]]
+    return ranks
+
+
+def _set_changes(source, target):
+    """(position in ``source`` of each node of ``target``, -1 where it has none; number of
+    nodes in one set and not the other). Both are flat mesh indices."""
+    position = np.full(int(max(source.max(initial=-1), target.max(initial=-1))) + 1, -1)
+    position[source] = np.arange(source.size)
+    where = position[target]
+    shared = int(np.count_nonzero(where >= 0))
+    return where, (target.size - shared) + (source.size - shared)
 
 
 class ExtendedFactors:
-    """The LU factors ``lu`` of a block on the node set ``source`` (flat mesh indices in block
-    order) applied as a preconditioner on another set ``target`` of a nearby matrix with
-    diagonal ``diagonal``: A_old^-1 on the nodes both sets share (a residual restricted to
-    them, extended by zero), Jacobi 1/diagonal on the nodes only ``target`` has. Symmetric
-    positive definite when A_old is, so CG may use it; with equal sets it is A_old^-1."""
+    """The LU factors ``lu`` of a block A on the node set ``source`` (flat mesh indices in
+    block order), turned into the exact inverse of a matrix on another set ``target`` with
+    the few changed nodes eliminated by capacitance (Schur complement) corrections: the
+    preconditioner of CG on a nearby block B (``block``, on ``target``) in place of a new
+    factorisation.
 
-    def __init__(self, lu, source, target, diagonal):
+    With h the nodes both sets share, R those only ``source`` has and G those only
+    ``target`` has, it inverts P = [[A_hh, B_hG], [B_Gh, B_GG]]:
+      - A_hh^-1 from A^-1 by holding the R nodes at zero with multipliers:
+        A_hh^-1 r = (z - W C^-1 z_R)_h, z = A^-1 r (extended by zero), W = A^-1 E_R,
+        C = W_R (a principal block of A^-1, symmetric positive definite);
+      - G by block elimination with S = B_GG - B_Gh V, V = A_hh^-1 B_hG.
+    Building it costs |R| + |G| back-substitutions (``changes``); each solve one more and
+    dense products with W and V. P equals B where the old and new matrices agree, so CG only
+    resolves the change of the film, however the set moved (Hager 1989, SIAM Rev. 31:221,
+    on updating an inverse by a few rows). ``usable`` is False when S is not positive
+    definite (then the block is factorised)."""
+
+    def __init__(self, lu, source, target, block):
         self.lu, self.source = lu, source
-        position = np.full(int(max(source.max(initial=-1), target.max(initial=-1))) + 1, -1)
-        position[source] = np.arange(source.size)
-        where = position[target]
+        where, self.changes = _set_changes(source, target)
         self.shared = where >= 0
         self.into = where[self.shared]
-        self.same = np.array_equal(source, target)
-        self.changes = int(np.count_nonzero(~self.shared)) + (source.size - self.into.size)
-        self.inverse_diagonal = 1.0 / diagonal[~self.shared]
+        self.same = self.changes == 0
+        self.usable = True
+        kept = np.zeros(source.size, dtype=bool)
+        kept[self.into] = True
+        self.removed = np.flatnonzero(~kept)
+        if self.removed.size:
+            columns = np.zeros((source.size, self.removed.size))
+            columns[self.removed, np.arange(self.removed.size)] = 1.0
+            self.w = lu.solve(columns)
+            self.capacitance = self.w[self.removed]
+        added = ~self.shared
+        self.coupling = None
+        if added.any():
+            block = block.tocsc()
+            self.coupling = block[self.shared][:, added].tocsc()  # B_hG
+            self.v = self._shared_inverse(self.coupling.toarray())
+            self.schur = block[added][:, added].toarray() - self.coupling.T @ self.v
+            self.usable = bool(np.all(np.linalg.eigvalsh(self.schur) > 0.0))
+
+    def _shared_inverse(self, rhs):
+        """A_hh^-1 rhs (rhs on the shared nodes, one column or several)."""
+        extended = np.zeros((self.source.size,) + rhs.shape[1:])
+        extended[self.into] = rhs
+        z = self.lu.solve(extended)
+        if self.removed.size:
+            z -= self.w @ np.linalg.solve(self.capacitance, z[self.removed])
+        return z[self.into]
 
     def solve(self, rhs):
         if self.same:
             return self.lu.solve(rhs)
-        extended = np.zeros(self.source.size)
-        extended[self.into] = rhs[self.shared]
         solution = np.empty(rhs.size)
-        solution[self.shared] = self.lu.solve(extended)[self.into]
-        solution[~self.shared] = rhs[~self.shared] * self.inverse_diagonal
+        y = self._shared_inverse(rhs[self.shared])
+        if self.coupling is None:
+            solution[self.shared] = y
+            return solution
+        added = np.linalg.solve(self.schur, rhs[~self.shared] - self.coupling.T @ y)
+        solution[self.shared] = y - self.v @ added
+        solution[~self.shared] = added
         return solution
 
 
@@ -234,11 +324,10 @@ def _preconditioned_cg(block, rhs, preconditioner):
     start = np.linalg.norm(r)
     if start <= target:
         return x
-    extra = REUSE_CG_STEPS_PER_CHANGE * preconditioner.changes
     z = preconditioner.solve(r)
     d = z.copy()
     rz = r @ z
-    for step in range(1, REUSE_CG_STEPS + extra + 1):
+    for step in range(1, REUSE_CG_STEPS + 1):
         q = block @ d
         alpha = rz / (d @ q)
         x += alpha * d
@@ -246,7 +335,7 @@ def _preconditioned_cg(block, rhs, preconditioner):
         norm = np.linalg.norm(r)
         if norm <= target:
             return x
-        if step == REUSE_CG_CHECK + extra and norm > REUSE_CG_CHECK_FACTOR * start:
+        if step == REUSE_CG_CHECK and norm > REUSE_CG_CHECK_FACTOR * start:
             return None
         z = preconditioner.solve(r)
         rz, rz_old = r @ z, rz
@@ -259,7 +348,8 @@ class BlockInverse:
     Reynolds solve: by its own LU factors, or, given the factors of a nearby matrix
     (``nearby``: a BlockInverse on the same set or one that differs by at most
     REUSE_MAX_CHANGES nodes), by conjugate gradients preconditioned with them
-    (ExtendedFactors), factorising A_FF only if CG stalls.
+    (ExtendedFactors), factorising A_FF only if CG stalls; a factorisation takes the
+    elimination order of ``nearby``'s (``ranking``, _factorize).
 
     In the coupled iteration consecutive Reynolds solves differ by a small change of the
     film, and the active-set steps by a few nodes of the free boundary, so the old factors
@@ -267,20 +357,19 @@ class BlockInverse:
     factorisation (the cost of a solve on fine meshes).
     """
 
-    def __init__(self, block, index, nearby=None, chain=False):
+    def __init__(self, block, index, nearby=None):
         self.block = block  # A_FF, csc
         self.index = index
         self.preconditioner = None
+        self.ranking = None if nearby is None else nearby.ranking
         if nearby is not None:
             lu, source = nearby.own_factors
-            candidate = ExtendedFactors(lu, source, index, block.diagonal())
-            borrowed = nearby.lu is None
-            # factors borrowed for another set are passed on freely within one active-set
-            # loop (its intermediate sets are solved once); see REUSE_KEEP_CHANGES
-            allowed = REUSE_MAX_CHANGES if chain or not borrowed else REUSE_KEEP_CHANGES
-            if candidate.changes <= allowed:
-                self.preconditioner = candidate
-        self.lu = _factorize(block) if self.preconditioner is None else None
+            if _set_changes(source, index)[1] <= REUSE_MAX_CHANGES:
+                candidate = ExtendedFactors(lu, source, index, block)
+                self.preconditioner = candidate if candidate.usable else None
+        self.lu = None
+        if self.preconditioner is None:
+            self.lu, self.ranking = _factorize(block, index, self.ranking)
 
     @property
     def own_factors(self):
@@ -300,18 +389,18 @@ class BlockInverse:
             x = _preconditioned_cg(self.block, rhs, self.preconditioner)
             if x is not None:
                 return x
-            self.lu = _factorize(self.block)
+            self.lu, self.ranking = _factorize(self.block, self.index, self.ranking)
         return self.lu.solve(rhs)
 
 
-def _solve_on(matrix, rhs, free, index, nearby=None, chain=False):
+def _solve_on(matrix, rhs, free, index, nearby=None):
     """(p, BlockInverse of A_FF or None) with p = 0 off the free set and A_FF p_F = b_F on
-    it; ``index``: flat mesh index of each unknown; ``nearby``, ``chain``: the BlockInverse of
+    it; ``index``: flat mesh index of each unknown; ``nearby``: the BlockInverse of
     a nearby matrix to precondition with (BlockInverse)."""
     p = np.zeros(rhs.size)
     inverse = None
     if free.any():
-        inverse = BlockInverse(matrix[free][:, free].tocsc(), index[free], nearby, chain)
+        inverse = BlockInverse(matrix[free][:, free].tocsc(), index[free], nearby)
         p[free] = inverse.solve(rhs[free])
     return p, inverse
 
@@ -386,7 +475,7 @@ def _active_set(matrix, rhs, cavitated, max_steps, index, nearby=None):
     that moves by a few nodes costs back-substitutions, not a factorisation."""
     w_tol = SET_TOLERANCE * np.abs(rhs).max(initial=0.0)
     for steps in range(1, max_steps + 1):
-        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby, chain=steps > 1)
+        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby)
         nearby = factor if factor is not None else nearby
         w = matrix @ p - rhs
         p_tol = SET_TOLERANCE * np.abs(p).max(initial=0.0)
