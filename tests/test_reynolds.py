@@ -296,36 +296,6 @@ def test_capacitance_corrections_invert_the_block_on_a_moved_set_exactly():
     np.testing.assert_allclose(inverse.solve(rhs), spsolve(block, rhs), rtol=1e-10)
 
 
-def test_factorisations_share_one_elimination_order():
-    """A factorisation given the ranking of an earlier one skips the ordering and solves as
-    spsolve does; with more than REORDER_FRACTION of its nodes unranked it orders anew."""
-    from scipy.sparse.linalg import spsolve
-
-    from lubecontact.reynolds import REORDER_FRACTION, OrderedFactors, _factorize, reynolds_system
-
-    mesh, hT, k = rough_cylinder_2d(nx=61, ny=41)
-    system = reynolds_system(mesh, hT, k, 0.1)
-    index = np.flatnonzero(system.unknown)
-    rng = np.random.default_rng(7)
-    first = np.ones(index.size, bool)
-    first[rng.choice(index.size, 200, replace=False)] = False
-    _, ranking = _factorize(system.matrix[first][:, first].tocsc(), index[first])
-    unranked = np.flatnonzero(~first)
-    few = int(REORDER_FRACTION * first.sum() / (1.0 - REORDER_FRACTION))  # most that keep the order
-    assert few >= 5
-    for added, ordered in ((few, True), (few + 1, False)):
-        free = first.copy()
-        free[unranked[:added]] = True
-        block = system.matrix[free][:, free].tocsc()
-        lu, _ = _factorize(block, index[free], ranking)
-        assert isinstance(lu, OrderedFactors) == ordered
-        if ordered:  # the borrowed order is a good one: fill within 10 % of the block's own
-            own, _ = _factorize(block, index[free])
-            assert lu.lu.L.nnz + lu.lu.U.nnz <= 1.1 * (own.L.nnz + own.U.nnz)
-        rhs = rng.random(block.shape[0])
-        np.testing.assert_allclose(lu.solve(rhs), spsolve(block, rhs), rtol=1e-10)
-
-
 def test_plain_reynolds_recovered_for_thick_films():
     """flow_factors on or off, rough with H >= 60 everywhere: the smooth solution."""
     mesh, h, k_smooth = line_problem(-8.0, 2.0, 201)

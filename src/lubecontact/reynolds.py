@@ -37,8 +37,7 @@ little earlier in the coupled iteration, on the same pressurised set or one a fe
 away: CG preconditioned with its factors, the set change eliminated exactly, BlockInverse
 and ExtendedFactors), the same for an active-set step whose set differs from the step
 before by a few nodes, and ``load_sensitivity`` (dW/dh by one back-substitution, so the
-force balance takes Newton steps instead of extra Reynolds solves). The factorisations
-that remain on a mesh share one elimination order (_factorize).
+force balance takes Newton steps instead of extra Reynolds solves).
 """
 
 from __future__ import annotations
@@ -186,56 +185,8 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_
     return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown)
 
 
-class OrderedFactors:
-    """LU factors of a block under a given symmetric elimination order ``order`` (block
-    positions, first eliminated first): SuperLU on the permuted block without an ordering
-    pass of its own; ``solve`` as scipy's SuperLU on the unpermuted block."""
-
-    def __init__(self, block, order):
-        self.order = order
-        self.lu = splu(block[order][:, order].tocsc(), permc_spec="NATURAL", **_SPD_OPTIONS)
-
-    def solve(self, rhs):
-        solution = np.empty_like(rhs)
-        solution[self.order] = self.lu.solve(rhs[self.order])
-        return solution
-
-
-_SPD_OPTIONS = {"diag_pivot_thresh": 0.0, "options": {"SymmetricMode": True}}
-
-
-# A factorisation reorders (minimum degree) when more than this fraction of its nodes were
-# not in the set the ranking was made for: they are eliminated last, which adds fill.
-REORDER_FRACTION = 0.01
-
-
-def _factorize(block, index, ranking=None):
-    """(LU factors of the SPD block on the nodes ``index`` (flat mesh indices), ranking).
-
-    Without ``ranking`` SuperLU orders the block by minimum degree on A + A^T and the
-    ranking (elimination position of each flat mesh index, inf where it has none) records
-    that order. With one, the block is eliminated in the ranked order (nodes without a rank
-    last; at most REORDER_FRACTION of them, else it is reordered) and the ordering pass, 15-20 % of a factorisation on 29k-160k unknowns with the
-    same fill (bench/RESULTS.md), is skipped: consecutive factorisations of a coupled
-    iteration share a mesh and differ by a few free-boundary nodes, so one minimum-degree
-    order serves them all (the fill grows by a fraction of a per cent for a set 50 nodes
-    away)."""
-    if ranking is not None:
-        ranks = _ranks(ranking, index)
-        if np.count_nonzero(np.isinf(ranks)) <= REORDER_FRACTION * index.size:
-            return OrderedFactors(block, np.argsort(ranks, kind="stable")), ranking
-    lu = splu(block, permc_spec="MMD_AT_PLUS_A", **_SPD_OPTIONS)
-    ranking = np.full(int(index.max(initial=-1)) + 1, np.inf)
-    ranking[index] = lu.perm_c
-    return lu, ranking
-
-
-def _ranks(ranking, index):
-    """Rank of each node of ``index`` in ``ranking`` (inf for nodes it does not cover)."""
-    ranks = np.full(index.size, np.inf)
-    covered = index < ranking.size
-    ranks[covered] = ranking[index[covered]]
-    return ranks
+def _factorize(block):
+    return splu(block, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
 
 
 def _set_changes(source, target):
@@ -316,8 +267,8 @@ class ExtendedFactors:
 
 def _preconditioned_cg(block, rhs, preconditioner):
     """x with block x = rhs by conjugate gradients preconditioned with ``preconditioner``
-    (ExtendedFactors: LU factors of a nearby SPD matrix, on a set that differs by its
-    ``changes`` nodes); None when it does not converge fast (see REUSE_CG_*)."""
+    (ExtendedFactors: the exact inverse of a nearby SPD matrix); None when it does not
+    converge fast (see REUSE_CG_*)."""
     x = np.zeros_like(rhs)
     r = rhs.copy()
     target = REUSE_CG_TOLERANCE * np.linalg.norm(rhs)
@@ -348,8 +299,7 @@ class BlockInverse:
     Reynolds solve: by its own LU factors, or, given the factors of a nearby matrix
     (``nearby``: a BlockInverse on the same set or one that differs by at most
     REUSE_MAX_CHANGES nodes), by conjugate gradients preconditioned with them
-    (ExtendedFactors), factorising A_FF only if CG stalls; a factorisation takes the
-    elimination order of ``nearby``'s (``ranking``, _factorize).
+    (ExtendedFactors), factorising A_FF only if CG stalls.
 
     In the coupled iteration consecutive Reynolds solves differ by a small change of the
     film, and the active-set steps by a few nodes of the free boundary, so the old factors
@@ -361,15 +311,12 @@ class BlockInverse:
         self.block = block  # A_FF, csc
         self.index = index
         self.preconditioner = None
-        self.ranking = None if nearby is None else nearby.ranking
         if nearby is not None:
             lu, source = nearby.own_factors
             if _set_changes(source, index)[1] <= REUSE_MAX_CHANGES:
                 candidate = ExtendedFactors(lu, source, index, block)
                 self.preconditioner = candidate if candidate.usable else None
-        self.lu = None
-        if self.preconditioner is None:
-            self.lu, self.ranking = _factorize(block, index, self.ranking)
+        self.lu = _factorize(block) if self.preconditioner is None else None
 
     @property
     def own_factors(self):
@@ -389,7 +336,7 @@ class BlockInverse:
             x = _preconditioned_cg(self.block, rhs, self.preconditioner)
             if x is not None:
                 return x
-            self.lu, self.ranking = _factorize(self.block, self.index, self.ranking)
+            self.lu = _factorize(self.block)
         return self.lu.solve(rhs)
 
 
