@@ -183,11 +183,20 @@ start_fault_run() {  # log name; sets SMK_PID and RUN_MARK
     smk_start "$FAULT_DIR" "$WORK/$1.log" "${FAULT_ARGS[@]}"
 }
 
-running_solve_job() {  # first running solve job of this run, waits up to 180 s
+# The solve job of this run with the longest time limit (the most work: solve_resources),
+# once all $solve_jobs solve jobs are submitted and it runs; waits up to 180 s. The first
+# job to start may be a chunk of a case or two that is written before a fault can reach it.
+running_solve_job() {
     local id
     for _ in $(seq 900); do
-        id=$(squeue -h -t RUNNING -o '%i|%k' | awk -F'|' -v mark="$RUN_MARK" -v g="rule_${GROUP}_" \
-            '$1 > mark && index($2, g) == 1 {print $1; exit}')
+        id=$(squeue -t all -h -o '%i|%k|%l|%T' | awk -F'|' -v mark="$RUN_MARK" -v g="rule_${GROUP}_" -v n="$solve_jobs" '
+            function seconds(t,   d, p, k, s, i) {  # SLURM time limit: [D-]H:MM:SS or MM:SS
+                d = 0; if (index(t, "-")) { d = substr(t, 1, index(t, "-") - 1); t = substr(t, index(t, "-") + 1) }
+                k = split(t, p, ":"); s = 0; for (i = 1; i <= k; i++) s = 60 * s + p[i]
+                return 86400 * d + s
+            }
+            $1 > mark && index($2, g) == 1 { jobs++; l = seconds($3); if (l > best) { best = l; id = $1; state = $4 } }
+            END { if (jobs >= n && state == "RUNNING") print id }')
         [ -n "$id" ] && { echo "$id"; return 0; }
         kill -0 "$SMK_PID" 2>/dev/null || return 1
         sleep 0.2
