@@ -177,30 +177,40 @@ slurm_log "default study (all figures): $full_planned sbatch submissions for $fu
 FAULT_ARGS=("${SLURM_ARGS[@]}" --group-components "$GROUP=1" --omit-from collect)
 FAULT_DIR=$WORK/cluster
 
-start_fault_run() {  # log name; sets SMK_PID and RUN_MARK
+start_fault_run() {  # log name; sets SMK_PID and RUN_MARK; the partition is down (running_solve_job)
     rm -rf "${FAULT_DIR:?}/$RESULTS"
     RUN_MARK=$(last_jobid)
+    scontrol update PartitionName="$SLURM_PARTITION" State=DOWN
     smk_start "$FAULT_DIR" "$WORK/$1.log" "${FAULT_ARGS[@]}"
 }
 
 # The solve job of this run with the longest time limit (the most work: solve_resources),
-# once all $solve_jobs solve jobs are submitted and it runs; waits up to 180 s. The first
-# job to start may be a chunk of a case or two that is written before a fault can reach it.
+# once it runs. start_fault_run holds the partition down, so every solve job is still
+# pending when the victim is chosen: the first job to run may be a chunk of a case or two
+# that is written before a fault can reach it, and the largest one may be done before the
+# last is submitted. Then the partition comes up and this waits (up to 180 s) for the
+# victim to start.
 running_solve_job() {
-    local id
+    local id="" state
     for _ in $(seq 900); do
-        id=$(squeue -t all -h -o '%i|%k|%l|%T' | awk -F'|' -v mark="$RUN_MARK" -v g="rule_${GROUP}_" -v n="$solve_jobs" '
-            function seconds(t,   d, p, k, s, i) {  # SLURM time limit: [D-]H:MM:SS or MM:SS
-                d = 0; if (index(t, "-")) { d = substr(t, 1, index(t, "-") - 1); t = substr(t, index(t, "-") + 1) }
-                k = split(t, p, ":"); s = 0; for (i = 1; i <= k; i++) s = 60 * s + p[i]
-                return 86400 * d + s
-            }
-            $1 > mark && index($2, g) == 1 { jobs++; l = seconds($3); if (l > best) { best = l; id = $1; state = $4 } }
-            END { if (jobs >= n && state == "RUNNING") print id }')
-        [ -n "$id" ] && { echo "$id"; return 0; }
-        kill -0 "$SMK_PID" 2>/dev/null || return 1
+        if [ -z "$id" ]; then
+            id=$(squeue -t all -h -o '%i|%k|%l' | awk -F'|' -v mark="$RUN_MARK" -v g="rule_${GROUP}_solve_" -v n="$solve_jobs" '
+                function seconds(t,   d, p, k, s, i) {  # SLURM time limit: [D-]H:MM:SS or MM:SS
+                    d = 0; if (index(t, "-")) { d = substr(t, 1, index(t, "-") - 1); t = substr(t, index(t, "-") + 1) }
+                    k = split(t, p, ":"); s = 0; for (i = 1; i <= k; i++) s = 60 * s + p[i]
+                    return 86400 * d + s
+                }
+                $1 > mark && index($2, g) == 1 { jobs++; l = seconds($3); if (l > best) { best = l; id = $1 } }
+                END { if (jobs >= n) print id }')
+            [ -n "$id" ] && scontrol update PartitionName="$SLURM_PARTITION" State=UP
+        else
+            state=$(squeue -h -j "$id" -o %T 2>/dev/null)
+            [ "$state" = RUNNING ] && { echo "$id"; return 0; }
+        fi
+        kill -0 "$SMK_PID" 2>/dev/null || break
         sleep 0.2
     done
+    scontrol update PartitionName="$SLURM_PARTITION" State=UP
     return 1
 }
 
