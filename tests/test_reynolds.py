@@ -241,6 +241,14 @@ def test_cold_start_needs_few_steps_on_fine_meshes():
     assert solution.converged and solution.iterations <= 4
 
 
+def _flipped(free, count, rng):
+    """A copy of the pressurised-set mask ``free`` with ``count`` random nodes switched."""
+    flipped = free.copy()
+    flip = rng.choice(free.size, count, replace=False)
+    flipped[flip] = ~flipped[flip]
+    return flipped
+
+
 def test_factors_of_a_nearby_set_solve_exactly_without_a_factorisation():
     """BlockInverse with the factors of another pressurised set (ExtendedFactors): CG reaches the
     direct solution of the new block (scipy spsolve, independent of SuperLU's reuse) for a set
@@ -254,14 +262,11 @@ def test_factors_of_a_nearby_set_solve_exactly_without_a_factorisation():
     system = reynolds_system(mesh, hT, k, 0.1)
     index = np.flatnonzero(system.unknown)
     rng = np.random.default_rng(3)
-    free = np.ones(index.size, bool)
-    free[rng.choice(index.size, 40, replace=False)] = False
+    free = _flipped(np.ones(index.size, bool), 40, rng)
     old = BlockInverse(system.matrix[free][:, free].tocsc(), index[free])
     perturbed = reynolds_system(mesh, hT * 1.01, k * 1.03, 0.1).matrix
     for changes, factorised in ((0, False), (REUSE_MAX_CHANGES, False), (REUSE_MAX_CHANGES + 1, True)):
-        new_free = free.copy()
-        flip = rng.choice(index.size, changes, replace=False)
-        new_free[flip] = ~new_free[flip]
+        new_free = _flipped(free, changes, rng)
         block = perturbed[new_free][:, new_free].tocsc()
         rhs = rng.random(block.shape[0])
         inverse = BlockInverse(block, index[new_free], old)
@@ -282,11 +287,8 @@ def test_capacitance_corrections_invert_the_block_on_a_moved_set_exactly():
     system = reynolds_system(mesh, hT, k, 0.1)
     index = np.flatnonzero(system.unknown)
     rng = np.random.default_rng(5)
-    old = np.ones(index.size, bool)
-    old[rng.choice(index.size, 30, replace=False)] = False
-    new = old.copy()
-    flip = rng.choice(index.size, 12, replace=False)
-    new[flip] = ~new[flip]
+    old = _flipped(np.ones(index.size, bool), 30, rng)
+    new = _flipped(old, 12, rng)
     assert np.any(old & ~new) and np.any(new & ~old)  # both removed and added nodes
     lu = splu(system.matrix[old][:, old].tocsc())
     block = system.matrix[new][:, new].tocsc()

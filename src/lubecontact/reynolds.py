@@ -46,6 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.linalg import LinAlgError, cho_factor, cho_solve
 from scipy.sparse.linalg import splu
 
 from .mesh import Mesh
@@ -189,16 +190,6 @@ def _factorize(block):
     return splu(block, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
 
 
-def _set_changes(source, target):
-    """(position in ``source`` of each node of ``target``, -1 where it has none; number of
-    nodes in one set and not the other). Both are flat mesh indices."""
-    position = np.full(int(max(source.max(initial=-1), target.max(initial=-1))) + 1, -1)
-    position[source] = np.arange(source.size)
-    where = position[target]
-    shared = int(np.count_nonzero(where >= 0))
-    return where, (target.size - shared) + (source.size - shared)
-
-
 class ExtendedFactors:
     """The LU factors ``lu`` of a block A on the node set ``source`` (flat mesh indices in
     block order), turned into the exact inverse of a matrix on another set ``target`` with
@@ -215,32 +206,39 @@ class ExtendedFactors:
     Building it costs |R| + |G| back-substitutions (``changes``); each solve one more and
     dense products with W and V. P equals B where the old and new matrices agree, so CG only
     resolves the change of the film, however the set moved (Hager 1989, SIAM Rev. 31:221,
-    on updating an inverse by a few rows). ``usable`` is False when S is not positive
-    definite (then the block is factorised)."""
+    on updating an inverse by a few rows). ``usable`` is False when the sets differ by more
+    than ``max_changes`` nodes (nothing is built) or C or S is not positive definite in
+    floating point: then the block is factorised instead."""
 
-    def __init__(self, lu, source, target, block):
+    def __init__(self, lu, source, target, block, max_changes=np.inf):
         self.lu, self.source = lu, source
-        where, self.changes = _set_changes(source, target)
+        position = np.full(int(max(source.max(initial=-1), target.max(initial=-1))) + 1, -1)
+        position[source] = np.arange(source.size)
+        where = position[target]
         self.shared = where >= 0
         self.into = where[self.shared]
+        self.changes = int(np.count_nonzero(~self.shared)) + (source.size - self.into.size)
         self.same = self.changes == 0
-        self.usable = True
+        self.usable = self.changes <= max_changes
+        self.removed = self.coupling = None
+        if self.same or not self.usable:
+            return
         kept = np.zeros(source.size, dtype=bool)
         kept[self.into] = True
         self.removed = np.flatnonzero(~kept)
-        if self.removed.size:
-            columns = np.zeros((source.size, self.removed.size))
-            columns[self.removed, np.arange(self.removed.size)] = 1.0
-            self.w = lu.solve(columns)
-            self.capacitance = self.w[self.removed]
         added = ~self.shared
-        self.coupling = None
-        if added.any():
-            block = block.tocsc()
-            self.coupling = block[self.shared][:, added].tocsc()  # B_hG
-            self.v = self._shared_inverse(self.coupling.toarray())
-            self.schur = block[added][:, added].toarray() - self.coupling.T @ self.v
-            self.usable = bool(np.all(np.linalg.eigvalsh(self.schur) > 0.0))
+        try:  # C and S are symmetric positive definite in exact arithmetic
+            if self.removed.size:
+                columns = np.zeros((source.size, self.removed.size))
+                columns[self.removed, np.arange(self.removed.size)] = 1.0
+                self.w = lu.solve(columns)
+                self.capacitance = cho_factor(self.w[self.removed])
+            if added.any():
+                self.coupling = block[self.shared][:, added].tocsc()  # B_hG
+                self.v = self._shared_inverse(self.coupling.toarray())
+                self.schur = cho_factor(block[added][:, added].toarray() - self.coupling.T @ self.v)
+        except LinAlgError:  # not positive definite after all: factorise the block instead
+            self.usable = False
 
     def _shared_inverse(self, rhs):
         """A_hh^-1 rhs (rhs on the shared nodes, one column or several)."""
@@ -248,7 +246,7 @@ class ExtendedFactors:
         extended[self.into] = rhs
         z = self.lu.solve(extended)
         if self.removed.size:
-            z -= self.w @ np.linalg.solve(self.capacitance, z[self.removed])
+            z -= self.w @ cho_solve(self.capacitance, z[self.removed])
         return z[self.into]
 
     def solve(self, rhs):
@@ -259,7 +257,7 @@ class ExtendedFactors:
         if self.coupling is None:
             solution[self.shared] = y
             return solution
-        added = np.linalg.solve(self.schur, rhs[~self.shared] - self.coupling.T @ y)
+        added = cho_solve(self.schur, rhs[~self.shared] - self.coupling.T @ y)
         solution[self.shared] = y - self.v @ added
         solution[~self.shared] = added
         return solution
@@ -312,10 +310,8 @@ class BlockInverse:
         self.index = index
         self.preconditioner = None
         if nearby is not None:
-            lu, source = nearby.own_factors
-            if _set_changes(source, index)[1] <= REUSE_MAX_CHANGES:
-                candidate = ExtendedFactors(lu, source, index, block)
-                self.preconditioner = candidate if candidate.usable else None
+            candidate = ExtendedFactors(*nearby.own_factors, index, block, REUSE_MAX_CHANGES)
+            self.preconditioner = candidate if candidate.usable else None
         self.lu = _factorize(block) if self.preconditioner is None else None
 
     @property
