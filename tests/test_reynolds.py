@@ -185,14 +185,17 @@ def independent_lcp(mesh, hT, k, speed):
     return pressure, A, b, [index[node] for node in nodes]
 
 
+def small_lcp(case):
+    """(mesh, h_T, k, U) of a complementarity problem small enough for projected SOR:
+    ``case`` "line" (Martin's cylinder) or "2d" (a tilted rough cylinder)."""
+    if case == "line":
+        return (*line_problem(-4.0, 2.0, 41), U)
+    return (*rough_cylinder_2d(nx=17, ny=11, tilt=5e-4), 0.1)
+
+
 @pytest.mark.parametrize("case", ["line", "2d"])
 def test_active_set_equals_projected_sor(case):
-    if case == "line":
-        mesh, hT, k = line_problem(-4.0, 2.0, 41)
-        speed = U
-    else:
-        mesh, hT, k = rough_cylinder_2d(nx=17, ny=11, tilt=5e-4)
-        speed = 0.1
+    mesh, hT, k, speed = small_lcp(case)
     solution = solve_reynolds(mesh, hT, k, speed)
     reference, A, b, _ = independent_lcp(mesh, hT, k, speed)
     np.testing.assert_allclose(solution.pressure, reference, rtol=0, atol=1e-8 * reference.max())

@@ -26,7 +26,8 @@ steps, usually a handful: guess the cavitated set C, solve A_FF p_F = b_F on the
 set F, then C <- {i in C: w_i > 0} + {i in F: p_i < 0}, until C repeats. A cavitated node
 learns that it should carry pressure only from a pressurised neighbour, so the full-film
 region grows by one node per step: a cold start therefore begins from the solution on a
-coarser mesh (nested iteration), which leaves 1-3 steps on each mesh whatever its size.
+coarser mesh (nested iteration), smoothed on this mesh by projected Gauss-Seidel sweeps
+(projected_smoothing), which leaves 1-3 steps on each mesh whatever its size.
 
 Nodes whose every face has k = 0 (a dry patch where k underflowed, H < -21) carry no film:
 they are held at p = 0 and reported as cavitated.
@@ -51,6 +52,7 @@ from scipy.sparse.linalg import splu
 
 from .mesh import Mesh
 from .percolation import FaceFilm
+from .projected_smoothing import smoothed_cavitated_set
 
 # Hysteresis of the active-set update, relative to the scales of p and w: a node changes
 # side only when its multiplier or pressure is clearly of the wrong sign, so round-off near
@@ -390,13 +392,15 @@ def _interpolate(field, source, target):
     return along(along(field, source.x, target.x, 1), source.y, target.y, 0)
 
 
-def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations, squeeze_rate=None):
-    """Cavitated set guessed from the solution on the coarser mesh (nested iteration).
+def _nested_guess(mesh, coarse, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate=None):
+    """Cavitated set (over the unknowns of ``system``) guessed from the solution on the
+    coarser mesh (nested iteration).
 
     A cavitated node only learns that it should carry pressure from a pressurised neighbour,
     so the active-set method grows the full-film region by one node per step: from a cold
-    start the step count grows with the mesh. Solving on coarser meshes first leaves the
-    free boundary a node or two to move on each level.
+    start the step count grows with the mesh. Solving on coarser meshes first, and smoothing
+    the interpolated pressure on this mesh (projected_smoothing), leaves the free boundary a
+    node or two to move on each level.
     """
     solution = solve_reynolds(
         coarse,
@@ -406,7 +410,7 @@ def _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations
         max_iterations=max_iterations,
         squeeze_rate=None if squeeze_rate is None else _interpolate(squeeze_rate, mesh, coarse),
     )
-    return _interpolate(solution.pressure, coarse, mesh) <= 0.0
+    return smoothed_cavitated_set(system, _interpolate(solution.pressure, coarse, mesh))
 
 
 def _active_set(matrix, rhs, cavitated, max_steps, index, nearby=None):
@@ -436,7 +440,7 @@ def _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, 
     coarse = _coarser(mesh)
     if coarse is None:
         return system.rhs < 0.0
-    return _nested_guess(mesh, coarse, expected_gap, coefficient, speed, max_iterations, squeeze_rate)[system.unknown]
+    return _nested_guess(mesh, coarse, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate)
 
 
 def _reusable(mesh, reuse):
@@ -448,7 +452,7 @@ def _reusable(mesh, reuse):
 
 def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
                    cavitated_guess=None, max_iterations=100, reuse=None, faces=None,
-                   squeeze_rate=None) -> ReynoldsSolution:
+                   squeeze_rate=None, pressure_guess=None) -> ReynoldsSolution:
     """Fluid pressure of Eq. (1) with p = 0 on the boundary.
 
     cavitation=True: Reynolds (Swift-Stieber) condition by the primal-dual active-set method.
@@ -463,6 +467,9 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     ``faces`` (percolation.FaceFilm): the film on the faces (reynolds_system); the nested
     cold start on coarser meshes uses the nodal fields.
     ``squeeze_rate``: dh_T/dt (ny, nx) m/s of a transient step (reynolds_system).
+    ``pressure_guess`` (ny, nx) Pa, e.g. a coarser mesh's solution interpolated to this one,
+    warm-starts the set instead of ``cavitated_guess``: the set of the guess after projected
+    Gauss-Seidel smoothing on this mesh's system (projected_smoothing).
     """
     if max_iterations < 1:
         raise ValueError(f"max_iterations must be >= 1, got {max_iterations}")
@@ -478,8 +485,12 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
         iterations, repeated = 1, True
     else:
         iterations, repeated = 0, False
-        if cavitated_guess is not None:
+        warm = None
+        if pressure_guess is not None:
+            warm = smoothed_cavitated_set(system, pressure_guess)
+        elif cavitated_guess is not None:
             warm = np.asarray(cavitated_guess, dtype=bool)[system.unknown]
+        if warm is not None:
             p, cavitated, iterations, repeated, factor = _active_set(
                 matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), index, nearby
             )

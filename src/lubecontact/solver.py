@@ -220,10 +220,12 @@ def fluid_faces(model: Model, film: np.ndarray):
     return face_film(film, _coefficient_law(model), _content_law(model))
 
 
-def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, reuse=None) -> State:
+def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, reuse=None,
+             pressure_guess=None) -> State:
     """Pressures and forces at cylinder position z with deformation delta (Eqs. 3-5, 11).
     ``cavitated_guess`` and ``reuse`` (a previous ReynoldsSolution on this mesh) warm-start
-    the Reynolds solve (reynolds.solve_reynolds)."""
+    the Reynolds solve (reynolds.solve_reynolds), or ``pressure_guess`` (a coarser mesh's
+    pressure interpolated to this one) a Reynolds-cavitation solve in their place."""
     mesh, scene = model.mesh, model.scene
     film = model.undeformed_gap + z + delta
     area = mesh.nodal_area
@@ -241,7 +243,8 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
 
             from .reynolds import solve_reynolds
 
-            solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds")
+            solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds",
+                                  pressure_guess=pressure_guess)
         faces, face_slopes = fluid_faces(model, film)
         transient = {} if model.squeeze is None else {"squeeze_rate": model.squeeze.rate(h_t)}  # unsteady/
         reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse,
@@ -304,7 +307,8 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
 
 
 def balance_force(model: Model, delta: np.ndarray, z_guess: float | None, tolerance: float,
-                  stiffness_guess: float | None = None, cavitated_guess=None, reuse=None) -> tuple[State, float]:
+                  stiffness_guess: float | None = None, cavitated_guess=None, reuse=None,
+                  pressure_guess=None) -> tuple[State, float]:
     """Solve Eq. (18) for z at fixed deformation; returns the state and dF/dz (N/m, > 0 up).
 
     Safeguarded Newton: the total force F(z) falls as the cylinder rises (not everywhere:
@@ -315,6 +319,8 @@ def balance_force(model: Model, delta: np.ndarray, z_guess: float | None, tolera
     step without a usable slope (or that stalls) moves by |F error| / stiffness_guess, or
     the film scale, doubling each time. Each evaluation may cost a Reynolds solve, so the
     stopping test is on the force: |F_cont + F_fluid - F| <= tolerance * F.
+    ``cavitated_guess``, ``reuse`` and ``pressure_guess`` warm-start the first evaluation
+    (evaluate); the later ones start from the evaluation before.
     """
     force = model.scene.operating.force
     ftol = tolerance * force
@@ -330,7 +336,8 @@ def balance_force(model: Model, delta: np.ndarray, z_guess: float | None, tolera
     step = None
     previous_error = np.inf
     for _ in range(400):
-        state = evaluate(model, z, delta, cavitated, previous)
+        state = evaluate(model, z, delta, cavitated, previous, pressure_guess)
+        pressure_guess = None
         if state.reynolds is not None:
             cavitated, previous = state.reynolds.cavitated, state.reynolds
         error = state.total_force - force
@@ -489,14 +496,16 @@ def nested_start(model: Model, tolerance: float, initial: dict | None = None) ->
         return initial
     start = {"z": state.z, "delta": _interpolate(state.delta, coarse.mesh, model.mesh), "stiffness": diag["stiffness"]}
     if state.reynolds is not None:
-        start["cavitated"] = _interpolate(state.fluid_pressure, coarse.mesh, model.mesh) <= 0.0
+        pressure = _interpolate(state.fluid_pressure, coarse.mesh, model.mesh)
+        start["cavitated"] = pressure <= 0.0
+        start["pressure"] = pressure  # smoothed on the fine mesh (Reynolds cavitation)
     return start
 
 
 def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | None = None) -> tuple[State, dict]:
     """Iterate force balance and deformation to convergence; returns the state and diagnostics.
 
-    ``initial``: {"z", "delta"} and optionally {"cavitated", "stiffness"} to start from
+    ``initial``: {"z", "delta"} and optionally {"cavitated", "pressure", "stiffness"} to start from
     (None: cold); either way the fine mesh starts from the nested (coarse-mesh) solution
     where there is one (nested_start). ``tolerance`` overrides the scene's.
     """
@@ -506,16 +515,17 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
     max_iterations = scene.solver.max_iterations
     initial = nested_start(model, tol, initial)
     delta = np.zeros(model.mesh.shape)
-    z = stiffness = cavitated = reynolds = None
+    z = stiffness = cavitated = reynolds = pressure_guess = None
     if initial:
         if model.deformation is not None:  # a rigid model has no deformation to start from
             delta = np.array(initial.get("delta", delta), dtype=float).reshape(model.mesh.shape)
         z = initial.get("z")
         stiffness = initial.get("stiffness")
         cavitated = initial.get("cavitated")
+        pressure_guess = initial.get("pressure")
     deformation_step, mixer = deformation_stepper(model)
     smallest_change, stalled = np.inf, 0
-    restart = (delta.copy(), z, stiffness, cavitated)
+    restart = (delta.copy(), z, stiffness, cavitated, pressure_guess)
     change = 0.0
     balance_tol = tol if model.deformation is None else LOOSEST_BALANCE_TOLERANCE
     deformation_converged = False
@@ -523,8 +533,9 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
     iteration = 0
     try:
         for iteration in range(1, max_iterations + 1):
-            state, stiffness = balance_force(model, delta, z, balance_tol, stiffness, cavitated, reynolds)
-            z = state.z
+            state, stiffness = balance_force(model, delta, z, balance_tol, stiffness, cavitated, reynolds,
+                                             pressure_guess)
+            z, pressure_guess = state.z, None
             if state.reynolds is not None:
                 cavitated, reynolds = state.reynolds.cavitated, state.reynolds
             if model.deformation is None:
@@ -549,7 +560,7 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
                 # Newton step existed; from where Newton stalled it can wander instead
                 # (Fig. 12, F = 30 N: 200 iterations)
                 deformation_step, mixer = contact_newton_step, AndersonMixer(beta=1.0)
-                delta, z, stiffness, cavitated = restart[0].copy(), *restart[1:]
+                delta, z, stiffness, cavitated, pressure_guess = restart[0].copy(), *restart[1:]
                 reynolds, balance_tol = None, LOOSEST_BALANCE_TOLERANCE
                 continue
             step = deformation_step(model, state, new_delta - delta)
