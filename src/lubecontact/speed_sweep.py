@@ -33,12 +33,14 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
         point = scene.replace({"operating.speed": float(speed)})
         mesh = build_mesh(point)
         if initial is not None and previous_mesh.shape != mesh.shape:  # the inlet grew with the film
-            initial = {"z": initial["z"], "delta": _interpolate(initial["delta"], previous_mesh, mesh)}
+            initial = {key: initial[key] if key == "z" else _interpolate(initial[key], previous_mesh, mesh)
+                       for key in ("z", "delta", "pressure") if key in initial}
         ds, state = solve(point, fields=fields, initial=initial, return_state=True)
         if warm_start and ds["converged"].item() == 1:
             initial, previous_mesh = {"z": state.z, "delta": state.delta}, mesh
-            if state.reynolds is not None:
+            if state.reynolds is not None:  # the set follows from the pressure (projected_smoothing)
                 initial["cavitated"] = state.reynolds.cavitated
+                initial["pressure"] = state.reynolds.pressure
         cases.append(ds.drop_vars("speed"))
     out = xr.concat(cases, dim="speed", combine_attrs="drop_conflicts")
     out = out.assign_coords(speed=xr.Variable(("speed",), speeds, {"units": "m s-1", "long_name": "sliding speed U of the block"}))
