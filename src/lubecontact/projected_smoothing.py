@@ -26,11 +26,20 @@ from __future__ import annotations
 
 import numpy as np
 
-# Sweeps of the smoothing. On Table 1 (F = 5 N, 4 speeds) at 201^2 the first fine-mesh
-# evaluation then factorises once or twice instead of three times; 5, 10, 20 and 50 sweeps
-# were compared (bench/RESULTS.md, "projected smoothing"): fewer leave the walk, more only
-# cost time. A free boundary moves about a node per sweep.
-GUESS_SWEEPS = 10
+# Sweeps of the smoothing per node along the side of a square mesh of as many unknowns:
+# sqrt(n) / 10 sweeps (5 at 51^2, 20 at 201^2, 40 at 401^2, 83 on 401 x 1705). A sweep costs
+# O(n) and a factorisation of the 2D block about O(n^1.5), so the smoothing stays a fixed
+# share of one factorisation (35 sweeps on 116k unknowns: about 0.1 s, a factorisation
+# 0.35 s), while the distance the free boundary must move, in nodes, grows with the mesh.
+# Measured on Table 1 (4 speeds, 51^2 to 401^2; bench/RESULTS.md, "projected smoothing"):
+# a fixed 10 sweeps left 401^2 with a second factorisation of the finest mesh at 0.1-10 m/s,
+# 0.1 per side node with one; 0.2 was no better at 401^2.
+GUESS_SWEEPS_PER_SIDE_NODE = 0.1
+
+
+def guess_sweeps(unknowns: int) -> int:
+    """Sweeps for a system of ``unknowns`` nodes (GUESS_SWEEPS_PER_SIDE_NODE), at least 1."""
+    return max(1, int(np.ceil(GUESS_SWEEPS_PER_SIDE_NODE * np.sqrt(unknowns))))
 
 
 def red_black_colour(unknown: np.ndarray) -> np.ndarray:
@@ -58,8 +67,8 @@ def projected_gauss_seidel(matrix, rhs, colour, pressure, sweeps):
 def smoothed_cavitated_set(system, pressure_guess) -> np.ndarray:
     """The cavitated set (mask over the unknowns of ``system``, a reynolds.ReynoldsSystem)
     of ``pressure_guess`` (ny, nx; e.g. a coarse solution interpolated to this mesh) after
-    GUESS_SWEEPS projected Gauss-Seidel sweeps on the system."""
+    guess_sweeps projected Gauss-Seidel sweeps on the system."""
     start = np.asarray(pressure_guess, dtype=float)[system.unknown]
     colour = red_black_colour(system.unknown)
-    p = projected_gauss_seidel(system.matrix.tocsr(), system.rhs, colour, start, GUESS_SWEEPS)
+    p = projected_gauss_seidel(system.matrix.tocsr(), system.rhs, colour, start, guess_sweeps(start.size))
     return p <= 0.0

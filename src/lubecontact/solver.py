@@ -657,8 +657,9 @@ def point_outputs(model: Model, state: State) -> tuple[dict, list[str]]:
 def solve(scene, fields: bool = False, initial: dict | None = None, return_state: bool = False):
     """Solve one operating point; returns the case ``xarray.Dataset`` (DESIGN.md outputs).
 
-    ``initial`` ({"z": float, "delta": array}) warm-starts the coupling loop (a sweep's
-    continuation); a cold start must give the same answer within tolerance.
+    ``initial`` ({"z": float, "delta": array}, optionally "cavitated" and "pressure" of a
+    previous solution on this mesh) warm-starts the coupling loop (a sweep's continuation);
+    a cold start must give the same answer within tolerance.
     """
     from .output import case_dataset
     from .validity import assess
