@@ -165,8 +165,9 @@ class TimeIntegrator:
             "delta": _extrapolate(times, [lv.state.delta for lv in used], t_new),
             "stiffness": last.diagnostics.get("stiffness"),
         }
-        if last.state.reynolds is not None:
+        if last.state.reynolds is not None:  # the set follows from the pressure (projected_smoothing)
             initial["cavitated"] = last.state.reynolds.cavitated
+            initial["pressure"] = last.state.reynolds.pressure
         try:
             state, diag = coupled_solve(model, initial)
         except SolveError as err:
