@@ -71,8 +71,11 @@ WARM_START_STEPS = 4
 # not cut the residual by REUSE_CG_CHECK_FACTOR. Factors of a pressurised set that differs
 # from this one by c nodes serve through c back-substitutions (ExtendedFactors), so they
 # are used up to REUSE_MAX_CHANGES nodes away: a factorisation costs 15-40
-# back-substitutions (2.6k-160k unknowns; 12 left Table 1 at 201^2 with 2-4 factorisations
-# on the finest mesh instead of 4-5, and 8 or 20 were no faster: bench/RESULTS.md).
+# back-substitutions (2.6k-160k unknowns; before the nested start was smoothed
+# (projected_smoothing), 12 left Table 1 at 201^2 with 2-4 factorisations on the finest
+# mesh instead of 4-5 and 8 or 20 were no faster; after it, 30 or 80 were slower at
+# 201 x 853, where the corrections of 14-29 nodes are rebuilt at every step:
+# bench/RESULTS.md).
 REUSE_CG_TOLERANCE = 1e-12
 REUSE_CG_STEPS = 12
 REUSE_CG_CHECK = 3
