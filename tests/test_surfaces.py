@@ -17,6 +17,7 @@ from scipy.integrate import quad
 from lubecontact.cli import main
 from lubecontact.surfaces import SurfaceError, composite, parameters, read_surface, spectral_moments
 from lubecontact.surfaces.reading import from_array
+from lubecontact.surfaces.moments import tukey_window
 from lubecontact.surfaces.synthetic import isotropic_surface, rolled_power_law
 
 
@@ -79,6 +80,17 @@ def test_sine_profile_moments_exact_when_periodic():
     # a cosine over whole periods is orthogonal to the line the detrending removes
     hann = spectral_moments(from_array(amplitude * np.cos(k * x), (length,)), cutoff=length / 10, window="hann")
     assert hann.m2[0] == pytest.approx(amplitude**2 * k**2 / 2 * (1 + 1 / (3 * periods**2)), rel=2e-3)
+
+
+@pytest.mark.parametrize("n", [1, 2, 7, 64, 255])
+@pytest.mark.parametrize("taper", [0.0, 0.1, 0.5, 1.0, 1.5])
+def test_tukey_window_is_scipys(n, taper):
+    """The numpy Tukey window (moments.tukey_window) against scipy.signal's, and numpy's Hann
+    against scipy's symmetric one (the two windows profile_power uses)."""
+    from scipy.signal import windows
+
+    np.testing.assert_allclose(tukey_window(n, taper), windows.tukey(n, taper), rtol=0, atol=1e-14)
+    np.testing.assert_allclose(np.hanning(n), windows.hann(n, sym=True), rtol=0, atol=1e-14)
 
 
 def test_cutoff_excludes_shorter_waves():
