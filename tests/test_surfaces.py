@@ -280,6 +280,40 @@ def test_scene_takes_roughness_from_the_file(scene_dir, monkeypatch):
     assert other.roughness.sigma != direct.sigma and other.hash != scene.hash
 
 
+def test_analysed_surface_is_kept_on_disk_by_content(scene_dir, tmp_path, monkeypatch):
+    """A new process (the memory cache cleared) takes a surface's parameters from the disk
+    cache without reading the file; an edited file or an unreadable cache entry is analysed
+    again, and what comes back is the direct analysis."""
+    from lubecontact.surfaces import measured
+
+    monkeypatch.setenv("LUBECONTACT_CACHE", str(tmp_path / "cache"))
+    surface = scene_dir / "maps" / "a.asc"
+    direct = parameters(spectral_moments(read_surface(surface)))
+    measured._cached.cache_clear()
+    first, digest = measured.scene_roughness(surface)
+    assert first == direct and len(list((tmp_path / "cache").glob("*.json"))) == 1
+
+    def no_reading(*args, **kwargs):
+        raise AssertionError("read the file instead of the cache")
+
+    measured._cached.cache_clear()
+    with monkeypatch.context() as m:
+        m.setattr(measured, "read_surface", no_reading)
+        assert measured.scene_roughness(surface) == (direct, digest)
+        text = surface.read_text().splitlines()
+        text[3] = text[3].replace("e", "1e", 1)  # one height edited
+        surface.write_text("\n".join(text) + "\n")
+        measured._cached.cache_clear()
+        with pytest.raises(AssertionError, match="instead of the cache"):
+            measured.scene_roughness(surface)
+    for stored in (tmp_path / "cache").glob("*.json"):
+        stored.write_text("{not json")
+    measured._cached.cache_clear()
+    edited = parameters(spectral_moments(read_surface(surface)))
+    assert measured.scene_roughness(surface)[0] == edited != direct
+    measured._cached.cache_clear()
+
+
 def test_case_hash_sees_the_content_not_the_name(scene_dir):
     from lubecontact.scene import load_scene
 
