@@ -14,6 +14,7 @@ import xarray as xr
 import yaml
 
 from lubecontact import grid, load_scene
+from lubecontact.casefiles import CaseRecord
 from lubecontact.mesh import build_mesh
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -237,19 +238,19 @@ def test_fingerprint_depends_on_content_not_location(tmp_path):
 # --- collect ----------------------------------------------------------------------------------
 
 
-def fake_case(case: grid.CaseSpec, sigma: float, speed: float) -> xr.Dataset:
+def fake_case(case: grid.CaseSpec, sigma: float, speed: float, scene_hash: str | None = None) -> CaseRecord:
     """A case file stand-in whose values are known functions of (sigma, speed)."""
     def scalar(value, units, dtype=np.float64):
         return xr.Variable((), np.asarray(value, dtype=dtype), {"units": units, "long_name": f"test {units}"})
 
-    return xr.Dataset(
+    return CaseRecord.from_dataset(xr.Dataset(
         {
             "contact_resistance": scalar(sigma * 1e6 + speed, "ohm"),
             "converged": scalar(int(speed < 1.0), "1", np.int32),
             "speed": scalar(speed, "m s-1"),
         },
-        attrs={"scene_hash": case.id, "scene": f"scene of {case.id}", "lubecontact_version": "9.9"},
-    )
+        attrs={"scene_hash": scene_hash or case.id, "scene": f"scene of {case.id}", "lubecontact_version": "9.9"},
+    ))
 
 
 def test_collect_places_each_case_on_its_coordinates():
@@ -279,12 +280,8 @@ def test_collect_refuses_a_file_of_another_scene_or_speed():
     g = grid.expand("fig04", sigma_figure(), ROOT)
     cases = g.unique_cases()
 
-    def wrong_hash(case_id):
-        ds = fake_case(cases[case_id], 0.5e-6, 0.01)
-        return ds.assign_attrs(scene_hash="0" * 16)
-
     with pytest.raises(grid.GridError, match="holds scene"):
-        grid.collect(g.layout(), wrong_hash)
+        grid.collect(g.layout(), lambda case_id: fake_case(cases[case_id], 0.5e-6, 0.01, scene_hash="0" * 16))
     with pytest.raises(grid.GridError, match="speed"):
         grid.collect(g.layout(), lambda case_id: fake_case(cases[case_id], 0.5e-6, 123.0))
 

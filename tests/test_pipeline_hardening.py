@@ -37,7 +37,26 @@ def test_complete_case_and_every_kind_of_incomplete_one(case, tmp_path):
         bad.write_bytes(content)
         assert casefiles.case_problem(bad, case_id).startswith("unreadable"), name
         with pytest.raises(RuntimeError, match=f"(?s)case file {re.escape(str(bad))} does not read.*run snakemake again"):
-            casefiles.open_case(bad)
+            casefiles.read_case(bad)
+
+
+def test_read_case_gives_what_xarray_reads(case):
+    """collect's netCDF4 reader against xarray's decoding of the same file: every 0-d
+    variable with its value (inf and NaN included), dtype and attributes, and the globals."""
+    import numpy as np
+    import xarray as xr
+
+    path, case_id = case
+    record = casefiles.read_case(path)
+    expected = casefiles.CaseRecord.from_dataset(xr.load_dataset(path))
+    assert record.attrs == expected.attrs and record.attrs["scene_hash"] == case_id
+    assert list(record.scalars) == list(expected.scalars) and "film_resistance" in record.scalars
+    assert np.isinf(record.scalars["film_resistance"][0])  # no metallic path through a dry film
+    for name, (value, attrs) in expected.scalars.items():
+        got, got_attrs = record.scalars[name]
+        assert got.dtype == value.dtype and got.shape == (), name
+        np.testing.assert_array_equal(got, value, err_msg=name)
+        assert got_attrs == attrs, name
 
 
 def test_quarantine_moves_only_bad_files_and_remembers_good_ones(case, tmp_path):

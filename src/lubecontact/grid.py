@@ -439,7 +439,8 @@ def sources_fingerprint(paths: Iterable) -> str:
 def collect(layout: Mapping, open_case: Callable[[str], object]):
     """One figure's cases as an ``xarray.Dataset`` with the swept parameters as dimensions.
 
-    ``layout`` is ``FigureGrid.layout()``; ``open_case(id)`` returns that case's Dataset.
+    ``layout`` is ``FigureGrid.layout()``; ``open_case(id)`` returns that case's
+    casefiles.CaseRecord (read_case of its file).
     Every 0-d variable of the cases becomes an array over (swept dims..., speed) with the
     case's units and long_name; ``case_id`` and ``scene`` (canonical YAML) say where each
     point comes from. A case variable named like a coordinate (``speed``) must agree with it.
@@ -463,27 +464,26 @@ def collect(layout: Mapping, open_case: Callable[[str], object]):
     versions = set()
     for index in np.ndindex(ids.shape):
         case_id = ids[index]
-        ds = open_case(case_id)
+        case = open_case(case_id)
         where = f"{layout['figure']}: case {case_id}"
-        if ds.attrs.get("scene_hash") != case_id:
-            raise GridError(f"{where}: the file holds scene {ds.attrs.get('scene_hash')!r}, not {case_id!r}")
-        scalars = [v for v in ds.data_vars if ds[v].ndim == 0]
+        if case.attrs.get("scene_hash") != case_id:
+            raise GridError(f"{where}: the file holds scene {case.attrs.get('scene_hash')!r}, not {case_id!r}")
         if not arrays:
-            for v in scalars:
+            for v, (value, var_attrs) in case.scalars.items():
                 if v not in coords:
-                    arrays[v] = np.empty(ids.shape, dtype=ds[v].dtype)
-                    attrs[v] = {"units": ds[v].attrs["units"], "long_name": ds[v].attrs["long_name"]}
-        elif set(scalars) - set(coords) != set(arrays):
-            raise GridError(f"{where}: variables {sorted(scalars)} differ from the figure's first case {sorted(arrays)}")
-        for v in scalars:
+                    arrays[v] = np.empty(ids.shape, dtype=value.dtype)
+                    attrs[v] = {"units": var_attrs["units"], "long_name": var_attrs["long_name"]}
+        elif set(case.scalars) - set(coords) != set(arrays):
+            raise GridError(f"{where}: variables {sorted(case.scalars)} differ from the figure's first case {sorted(arrays)}")
+        for v, (value, _) in case.scalars.items():
             if v in coords:
                 expected = coords[v].values[index[dims.index(coords[v].dims[0])]] if coords[v].dims else coords[v].values
-                if not np.isclose(ds[v].values, expected, rtol=1e-12, atol=0.0):
-                    raise GridError(f"{where}: {v} = {ds[v].values} in the file, {expected} in the grid")
+                if not np.isclose(value, expected, rtol=1e-12, atol=0.0):
+                    raise GridError(f"{where}: {v} = {value} in the file, {expected} in the grid")
             else:
-                arrays[v][index] = ds[v].values
-        scenes[index] = ds.attrs["scene"]
-        versions.add(ds.attrs["lubecontact_version"])
+                arrays[v][index] = value
+        scenes[index] = case.attrs["scene"]
+        versions.add(case.attrs["lubecontact_version"])
 
     data_vars = {v: xr.Variable(dims, a, attrs[v]) for v, a in arrays.items()}
     data_vars["case_id"] = xr.Variable(dims, ids.astype(str), {"long_name": "case id: content hash of the scene (results/cases/<id>.nc)"})

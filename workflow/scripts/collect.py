@@ -8,7 +8,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
 
-from lubecontact.casefiles import open_case
+from lubecontact.casefiles import read_case
 from lubecontact.grid import collect
 from lubecontact.joblog import job_log
 from lubecontact.output import write_case
@@ -17,6 +17,6 @@ from lubecontact.plans import read_plan
 
 with job_log(snakemake.log[0]):
     paths = {Path(p).stem: p for p in snakemake.input.cases}
-    ds = collect(read_plan(snakemake.input.plan), lambda case_id: open_case(paths[case_id]))
+    ds = collect(read_plan(snakemake.input.plan), lambda case_id: read_case(paths[case_id]))
     write_case(ds, snakemake.output[0])  # atomic netCDF write
     print(ds)
