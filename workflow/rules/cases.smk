@@ -66,11 +66,16 @@ if _main_process:
         print(f"lubecontact: {_line}", file=sys.stderr)
 
 
+def solve_seconds(cases):
+    """Estimated seconds of a job solving ``cases`` (config solve_resources, with headroom)."""
+    r = config["solve_resources"]
+    return sum(r["case_seconds"] * (c.nodes / 2601) ** 1.25 for c in cases)
+
+
 def solve_resources(cases):
     """runtime (min) and mem_mb of a job solving ``cases``, from config solve_resources."""
     r = config["solve_resources"]
     nodes = [c.nodes for c in cases]
-    seconds = sum(r["case_seconds"] * (n / 2601) ** 1.25 for n in nodes)
-    runtime = int(r["startup_minutes"] + seconds / 60 + 1)
+    runtime = int(r["startup_minutes"] + solve_seconds(cases) / 60 + 1)
     mem_mb = int(r["mem_mb"] + r["mem_mb_per_10k_nodes"] * max(nodes) / 1e4)
     return runtime, mem_mb

@@ -29,6 +29,8 @@ for _chunk in CHUNKS:
         # local runs ignore groups
         group:
             "solve"
+        # longest first (the LPT rule): a long chunk started last would run alone at the end
+        priority: int(solve_seconds(_chunk.cases))
         threads: 1
         resources:
             runtime=lambda wc, attempt, r=_runtime: r * attempt,
