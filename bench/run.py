@@ -340,16 +340,24 @@ def time_figures(which: str) -> dict:
         if configfile:
             cmd += ["--configfile", configfile]
         cmd += targets
+        # planning alone (a dry run: the Snakefile expands every figure's grid into scenes),
+        # what every Snakemake invocation and every cluster job pays before any work
+        t0 = time.perf_counter()
+        subprocess.run(cmd + ["--dry-run"], cwd=tmp, capture_output=True, text=True, check=True)
+        planning = time.perf_counter() - t0
         log(f"figures ({which}): {' '.join(cmd[1:])}")
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
         done = subprocess.run(cmd, cwd=tmp, capture_output=True, text=True, check=False)
         seconds = time.perf_counter() - t0
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
         if done.returncode != 0:
             raise RuntimeError(f"figure regeneration failed:\n{done.stderr[-3000:]}")
         cases = len(list((Path(tmp) / results / "cases").glob("*.nc")))
         figures = len(list((Path(tmp) / results / "figures").glob("*.png")))
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
     return {"which": which, "config": configfile or "config/config.yaml", "targets": targets, "wall_s": seconds,
-            "cases": cases, "figures_png": figures, "cores": os.cpu_count()}
+            "cpu_s": cpu, "planning_s": planning, "cases": cases, "figures_png": figures, "cores": os.cpu_count()}
 
 
 # --- analysis ----------------------------------------------------------------------------
@@ -519,7 +527,9 @@ def markdown(result: dict, previous: dict | None) -> str:
         f = result["figures"]
         what = {"paper": "the paper's Figs. 3-11", "full": "every target", "test": "every target"}.get(f.get("which"), "")
         lines += ["", f"## Regenerating {what} from scratch ({f['config']}, {f['cores']} cores)", "",
-                  f"{f['wall_s']:.1f} s wall for {f['cases']} cases, {f.get('figures_png', '?')} figures"]
+                  f"{f['wall_s']:.1f} s wall for {f['cases']} cases, {f.get('figures_png', '?')} figures "
+                  f"(cpu {fmt(f.get('cpu_s'), '.1f')} s, all processes); planning alone (a dry run): "
+                  f"{fmt(f.get('planning_s'), '.1f')} s"]
     lines += ["", "## Targets", ""] + [f"- {c}" for c in checks(result)]
     return "\n".join(lines) + "\n"
 
