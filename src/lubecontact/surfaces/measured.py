@@ -34,12 +34,15 @@ def scene_roughness(path, cutoff: float | None = None) -> tuple[McCool, str]:
     return _cached(str(path), digest, cutoff), digest
 
 
-def cache_dir() -> Path:
+def cache_dir() -> Path | None:
     """Where analysed surfaces are kept: $LUBECONTACT_CACHE, else the user's cache
-    directory ($XDG_CACHE_HOME or ~/.cache) / lubecontact / surfaces."""
+    directory ($XDG_CACHE_HOME or ~/.cache) / lubecontact / surfaces; None without a home."""
     if os.environ.get("LUBECONTACT_CACHE"):
         return Path(os.environ["LUBECONTACT_CACHE"])
-    base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+    try:
+        base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+    except RuntimeError:  # no home directory to be found: analyse every time
+        return None
     return Path(base) / "lubecontact" / "surfaces"
 
 
@@ -58,19 +61,28 @@ def _analysis_fingerprint() -> str:
 @functools.lru_cache(maxsize=32)
 def _cached(path: str, digest: str, cutoff: float | None) -> McCool:
     key = hashlib.sha256(f"{digest}|{cutoff!r}|{_analysis_fingerprint()}".encode()).hexdigest()[:32]
-    stored = cache_dir() / f"{key}.json"
+    directory = cache_dir()
+    stored = None if directory is None else directory / f"{key}.json"
+    kept = None if stored is None else _read_kept(stored)
+    if kept is not None:
+        return kept
+    result = parameters(spectral_moments(read_surface(path), cutoff))
+    if stored is not None:
+        try:  # a cache that cannot be written costs time only
+            stored.parent.mkdir(parents=True, exist_ok=True)
+            tmp = stored.with_name(f".{stored.name}.{os.getpid()}.tmp")
+            tmp.write_text(json.dumps(asdict(result)))
+            os.replace(tmp, stored)
+        except OSError:
+            pass
+    return result
+
+
+def _read_kept(stored: Path) -> McCool | None:
+    """The parameters kept in ``stored``, or None when it is not there or not readable as such."""
     try:
         fields = json.loads(stored.read_text())
         moments = fields.pop("moments")
         return McCool(**fields, moments=Moments(**{k: tuple(v) if isinstance(v, list) else v for k, v in moments.items()}))
     except (OSError, ValueError, TypeError, KeyError, AttributeError):
-        pass  # not there, or not readable as one: analyse the file
-    result = parameters(spectral_moments(read_surface(path), cutoff))
-    try:  # a cache that cannot be written costs time only
-        stored.parent.mkdir(parents=True, exist_ok=True)
-        tmp = stored.with_name(f".{stored.name}.{os.getpid()}.tmp")
-        tmp.write_text(json.dumps(asdict(result)))
-        os.replace(tmp, stored)
-    except OSError:
-        pass
-    return result
+        return None
