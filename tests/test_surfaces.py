@@ -17,7 +17,7 @@ from scipy.integrate import quad
 from lubecontact.cli import main
 from lubecontact.surfaces import SurfaceError, composite, parameters, read_surface, spectral_moments
 from lubecontact.surfaces.reading import from_array
-from lubecontact.surfaces.moments import tukey_window
+from lubecontact.surfaces.moments import hann_window, tukey_window
 from lubecontact.surfaces.synthetic import isotropic_surface, rolled_power_law
 
 
@@ -82,15 +82,16 @@ def test_sine_profile_moments_exact_when_periodic():
     assert hann.m2[0] == pytest.approx(amplitude**2 * k**2 / 2 * (1 + 1 / (3 * periods**2)), rel=2e-3)
 
 
-@pytest.mark.parametrize("n", [1, 2, 7, 64, 255])
-@pytest.mark.parametrize("taper", [0.0, 0.1, 0.5, 1.0, 1.5])
-def test_tukey_window_is_scipys(n, taper):
-    """The numpy Tukey window (moments.tukey_window) against scipy.signal's, and numpy's Hann
-    against scipy's symmetric one (the two windows profile_power uses)."""
+@pytest.mark.parametrize("n", [1, 2, 3, 7, 64, 128, 255, 512])
+@pytest.mark.parametrize("taper", [0.0, 0.1, 0.5, 0.9, 1.0, 1.5])
+def test_windows_are_scipys_to_the_bit(n, taper):
+    """The numpy Tukey and Hann windows (the two profile_power uses) equal scipy.signal's
+    exactly: a measured surface's parameters, and so its cases' ids, must not move."""
     from scipy.signal import windows
 
-    np.testing.assert_allclose(tukey_window(n, taper), windows.tukey(n, taper), rtol=0, atol=1e-14)
-    np.testing.assert_allclose(np.hanning(n), windows.hann(n, sym=True), rtol=0, atol=1e-14)
+    np.testing.assert_array_equal(tukey_window(n, taper), windows.tukey(n, taper))
+    np.testing.assert_array_equal(hann_window(n), windows.hann(n, sym=True))
+    assert np.allclose(hann_window(n), np.hanning(n), rtol=0, atol=1e-15)  # the textbook form
 
 
 def test_cutoff_excludes_shorter_waves():

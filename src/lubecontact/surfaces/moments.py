@@ -82,23 +82,39 @@ def detrended(surface: Surface) -> np.ndarray:
 
 def tukey_window(n: int, taper: float) -> np.ndarray:
     """The symmetric Tukey (tapered cosine) window of n points, ``taper`` the fraction of it
-    inside the two cosine tapers, at most 1 (Hann) (Harris 1978; scipy.signal.windows.tukey's
-    definition): w = (1 - cos(2 pi min(x, 1 - x, a/2) / a)) / 2 at x = k/(n - 1),
-    a = min(taper, 1). Written here because importing scipy.signal costs 0.7 s, in every
-    process that plans the workflow."""
-    if n == 1 or taper <= 0.0:
+    inside the two cosine tapers (Harris 1978): w = (1 + cos(pi (2k/(taper (n-1)) - 1))) / 2
+    over the first taper (n-1)/2 intervals, 1 in the middle, mirrored at the end; Hann from
+    taper = 1 on. Evaluated in scipy.signal.windows.tukey's arithmetic, so a measured
+    surface's parameters, and with them its cases' ids, are those computed with scipy's
+    window to the last bit; written here because importing scipy.signal costs 0.7 s in
+    every process that plans the workflow."""
+    if n <= 1 or taper <= 0.0:
         return np.ones(n)
-    taper = min(taper, 1.0)
-    x = np.linspace(0.0, 1.0, n)
-    edge = np.minimum(np.minimum(x, 1.0 - x), taper / 2.0)
-    return 0.5 * (1.0 - np.cos(2.0 * np.pi * edge / taper))
+    if taper >= 1.0:
+        return hann_window(n)
+    k = np.arange(n, dtype=float)
+    width = int(np.floor(taper * (n - 1) / 2.0))
+    first, last = k[: width + 1], k[n - width - 1 :]
+    return np.concatenate((
+        0.5 * (1 + np.cos(np.pi * (-1 + 2.0 * first / taper / (n - 1)))),
+        np.ones(n - 2 * width - 2),
+        0.5 * (1 + np.cos(np.pi * (-2.0 / taper + 1 + 2.0 * last / taper / (n - 1)))),
+    ))
+
+
+def hann_window(n: int) -> np.ndarray:
+    """The symmetric Hann window, (1 + cos(phi)) / 2 for phi from -pi to pi, in
+    scipy.signal.windows.hann's arithmetic (see tukey_window)."""
+    if n <= 1:
+        return np.ones(n)
+    return 0.5 + 0.5 * np.cos(np.linspace(-np.pi, np.pi, n))
 
 
 def profile_power(profiles: np.ndarray, spacing: float, window: str) -> tuple[np.ndarray, np.ndarray]:
     """Wave numbers q (rad/m) and one-sided power P(q) (m^2, sum = mean square) averaged
     over the rows of ``profiles``; the window is scaled to unit mean square."""
     n = profiles.shape[1]
-    w = {"tukey": lambda: tukey_window(n, TUKEY_TAPER), "hann": lambda: np.hanning(n), "none": lambda: np.ones(n)}[window]()
+    w = {"tukey": lambda: tukey_window(n, TUKEY_TAPER), "hann": lambda: hann_window(n), "none": lambda: np.ones(n)}[window]()
     w = w / np.sqrt(np.mean(w**2))
     power = np.abs(np.fft.rfft(profiles * w, axis=1)) ** 2 / n**2
     power[:, 1 : (n + 1) // 2] *= 2.0  # both signs of q, except q = 0 and Nyquist (even n)
