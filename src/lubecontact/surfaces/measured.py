@@ -21,6 +21,7 @@ from pathlib import Path
 from .mccool import McCool, parameters
 from .moments import Moments, spectral_moments
 from .reading import file_digest, read_surface
+from .report import write_text
 
 # the modules whose code decides the parameters (a change of any of them misses the cache)
 _ANALYSIS_SOURCES = ("reading.py", "moments.py", "mccool.py", "measured.py")
@@ -70,9 +71,7 @@ def _cached(path: str, digest: str, cutoff: float | None) -> McCool:
     if stored is not None:
         try:  # a cache that cannot be written costs time only
             stored.parent.mkdir(parents=True, exist_ok=True)
-            tmp = stored.with_name(f".{stored.name}.{os.getpid()}.tmp")
-            tmp.write_text(json.dumps(asdict(result)))
-            os.replace(tmp, stored)
+            write_text(stored, json.dumps(asdict(result)))
         except OSError:
             pass
     return result
