@@ -70,5 +70,5 @@ def smoothed_cavitated_set(system, pressure_guess) -> np.ndarray:
     guess_sweeps projected Gauss-Seidel sweeps on the system."""
     start = np.asarray(pressure_guess, dtype=float)[system.unknown]
     colour = red_black_colour(system.unknown)
-    p = projected_gauss_seidel(system.matrix.tocsr(), system.rhs, colour, start, guess_sweeps(start.size))
+    p = projected_gauss_seidel(system.matrix, system.rhs, colour, start, guess_sweeps(start.size))
     return p <= 0.0
