@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .atomic_write import write_text
+
 FINGERPRINT = "solver_sources_sha256"
 QUARANTINE = ".corrupt"  # hidden folder next to the case files
 
@@ -116,7 +118,5 @@ def quarantine(cases: dict[str, str], memo) -> list[str]:
         moved.append(f"{path}: {why}; moved to {aside}, the case will be solved again")
     if good != known and (good or memo.exists()):
         memo.parent.mkdir(parents=True, exist_ok=True)
-        tmp = memo.with_name(f".{memo.name}.{os.getpid()}.tmp")
-        tmp.write_text(json.dumps(good, sort_keys=True))
-        os.replace(tmp, memo)
+        write_text(memo, json.dumps(good, sort_keys=True))
     return moved

@@ -9,8 +9,9 @@ role the params rerun trigger had).
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
+
+from .atomic_write import write_text
 
 
 def write_plan(path, data) -> str:
@@ -23,9 +24,7 @@ def write_plan(path, data) -> str:
     except OSError:
         pass
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
+    write_text(path, text)
     return str(path)
 
 

@@ -3,12 +3,11 @@ the sampling and cut-off they were taken at, and a ``roughness:`` scene section.
 
 from __future__ import annotations
 
-import os
 import sys
-from pathlib import Path
 
 import yaml
 
+from ..atomic_write import write_text
 from .mccool import McCool
 from .moments import DEFAULT_CUTOFF_INTERVALS
 
@@ -51,18 +50,6 @@ def section_yaml(p: McCool, sources: list[str], split: tuple[float, float] | Non
     head += [f"# note: {n}" for n in p.notes()]
     body = {"roughness": {"sigma": p.sigma, "asperity_density": p.asperity_density, "asperity_radius": p.asperity_radius}}
     return "\n".join(head) + "\n" + yaml.safe_dump(body, sort_keys=False)
-
-
-def write_text(path, text: str) -> None:
-    """Atomic write: the file is there whole or not at all."""
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        tmp.write_text(text)
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
 
 
 def run(args) -> int:
