@@ -56,3 +56,69 @@ def test_coupled_newton_and_mixed_contact_steps_reach_the_same_solution(monkeypa
     for name in ("contact_resistance", "friction_coefficient", "separation", "fluid_force"):
         assert coupled[name].item() == pytest.approx(mixed[name].item(), rel=1e-5)
     assert coupled["iterations"].item() <= mixed["iterations"].item()
+
+
+def test_backtracking_makes_newton_converge_where_full_steps_diverge():
+    """Kelley's example (1995, section 8.1): Newton's method on arctan(x) = 0 from x = 10
+    overshoots further each step; with Armijo backtracking it reaches the root 0."""
+    from lubecontact.newton import Backtracking
+
+    def newton(x, search=None, iterations=30):
+        for _ in range(iterations):
+            if search is not None:
+                fraction = search.retry(abs(np.arctan(x)))
+                if fraction is not None:
+                    anchor, _, step, _ = search.anchor
+                    x = anchor + fraction * step
+                    continue
+            step = -np.arctan(x) * (1.0 + x * x)
+            if search is not None:
+                search.accept(x, abs(np.arctan(x)), step)
+            x = x + step
+            if not np.isfinite(x) or abs(x) > 1e100:
+                break
+        return x
+
+    assert not abs(newton(10.0)) < 1.0  # full steps diverge
+    assert abs(newton(10.0, Backtracking())) < 1e-12
+
+
+def test_backtracking_stops_halving_at_the_smallest_fraction():
+    from lubecontact.newton import SMALLEST_STEP_FRACTION, Backtracking
+
+    search = Backtracking()
+    search.accept(0.0, 1.0, 1.0)
+    fractions = []
+    while (fraction := search.retry(2.0)) is not None:  # never any decrease
+        fractions.append(fraction)
+    assert fractions == [0.5, 0.25, 0.125, 0.0625] and fractions[-1] == SMALLEST_STEP_FRACTION
+    assert search.exhausted
+    search.accept(0.0, 1.0, 1.0)
+    assert search.retry(0.5) is None and not search.exhausted  # enough decrease: kept
+
+
+def test_stalled_newton_steps_backtrack_to_the_mixed_steps_solution(monkeypatch):
+    """Table 1 on 51^2 at 0.0158 m/s: near the fold the full Newton steps cycle between
+    cavitated sets (650 <-> 654 nodes) and stall; the backtracked steps converge, to the
+    solution the contact-only step with Anderson mixing (another path) reaches, in fewer
+    outer iterations (16 against 65 for the restart with mixed steps it replaced)."""
+    from lubecontact.anderson import AndersonMixer
+    from lubecontact.newton import Backtracking
+
+    fractions = []
+
+    class Recorded(Backtracking):
+        def retry(self, norm):
+            fractions.append(super().retry(norm))
+            return fractions[-1]
+
+    monkeypatch.setattr(solver, "Backtracking", Recorded)
+    s = lc.load_scene(TABLE1, {"mesh.nx": 51, "mesh.ny": 51, "operating.speed": 0.0158})
+    backtracked = lc.solve(s)
+    assert any(fractions)  # it engaged and shortened a step
+    monkeypatch.setattr(solver, "deformation_stepper", lambda model: (solver.contact_newton_step, AndersonMixer(beta=1.0)))
+    mixed = lc.solve(s)
+    assert backtracked["converged"].item() == 1 and mixed["converged"].item() == 1
+    for name in ("contact_resistance", "friction_coefficient", "separation", "fluid_force"):
+        assert backtracked[name].item() == pytest.approx(mixed[name].item(), rel=1e-5)
+    assert backtracked["iterations"].item() < mixed["iterations"].item()

@@ -17,6 +17,10 @@ sum dA P'(v + dz) = 0,
 solved matrix-free by GMRES (each product: a few array operations on the faces, one
 back-substitution with the LU factors of the Reynolds solve and one FFT; 3-4 products per
 step on Table 1). Without fluid pressure it is solver.contact_newton_step's equation.
+
+The fluid pressure is a piecewise smooth function of the film (the cavitated set changes
+with it), so near a fold full Newton steps can cycle between sets; once they stall the
+coupled iteration shortens them by backtracking (``Backtracking``).
 """
 
 from __future__ import annotations
@@ -106,3 +110,43 @@ def coupled_newton_step(model, state, residual: np.ndarray) -> np.ndarray:
     if info < 0 or not np.all(np.isfinite(step)):
         return residual
     return step.reshape(mesh.shape)
+
+
+# Armijo's rule for the backtracking of stalled Newton steps (Kelley 1995, "Iterative Methods
+# for Linear and Nonlinear Equations", SIAM, section 8.1): a step fraction t is kept when the
+# residual falls to (1 - SUFFICIENT_DECREASE t) times the anchor's, else t is halved, down to
+# SMALLEST_STEP_FRACTION (four halvings; Kelley's 1e-4 and halving).
+SUFFICIENT_DECREASE = 1e-4
+SMALLEST_STEP_FRACTION = 1.0 / 16.0
+
+
+class Backtracking:
+    """Line search along Newton steps by halving (Armijo's rule), for an iteration whose
+    full steps stall.
+
+    ``accept(iterate, norm, step, data)`` anchors the search at an accepted iterate, the norm
+    of its residual, its Newton step and whatever the caller needs to start from it
+    (``data``); the caller then tries anchor + step. ``retry(norm)`` judges the residual norm
+    of the point just tried: None keeps that point (enough decrease, or the fraction cannot
+    be halved again: then ``exhausted`` is set and the caller decides what to do), else the
+    fraction of the anchored step to try next from the anchor.
+    """
+
+    def __init__(self):
+        self.anchor = None  # (iterate, residual norm, step, data) of the last accepted iterate
+        self.fraction = 1.0
+        self.exhausted = False
+
+    def accept(self, iterate, norm: float, step, data=None) -> None:
+        self.anchor = (iterate, norm, step, data)
+        self.fraction = 1.0
+
+    def retry(self, norm: float) -> float | None:
+        self.exhausted = False
+        if self.anchor is None or norm <= (1.0 - SUFFICIENT_DECREASE * self.fraction) * self.anchor[1]:
+            return None
+        if self.fraction <= SMALLEST_STEP_FRACTION:
+            self.exhausted = True
+            return None
+        self.fraction *= 0.5
+        return self.fraction

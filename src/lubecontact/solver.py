@@ -19,12 +19,13 @@ Algorithm (only the enabled effects are assembled and run):
    coupled step of newton.py ((I - K P') step = K(p + p_c) - delta, P' the linearised
    contact and fluid pressure with the force balance kept, by GMRES with the Reynolds
    factors and the FFT operator; 3-6 iterations on Table 1 where the contact-only step took
-   4-11). Without fluid (or with JFO or no cavitation) the step is preconditioned by the
-   contact part of the Jacobian only, (I + K D) step = K(p + p_c) - delta with D = -dp_c/dh >= 0 (a Newton
-   step for the dry contact), and accelerated by Anderson mixing (also for smooth steady
-   films, where full coupled Newton steps overshoot to h <= 0). The next z
-   is predicted to first order from the load gradient, so a balance near convergence takes
-   one evaluation. Stop when the change is below ``tolerance`` times the deformation's range.
+   4-11; near a fold, where full steps cycle between cavitated sets, they are shortened by
+   backtracking, newton.Backtracking). Without fluid (or with JFO or no cavitation) the
+   step is preconditioned by the contact part of the Jacobian only,
+   (I + K D) step = K(p + p_c) - delta with D = -dp_c/dh >= 0 (a Newton step for the dry
+   contact), and accelerated by Anderson mixing (also for smooth steady films, where full
+   coupled Newton steps overshoot to h <= 0). The next z is predicted to first order from
+   the load gradient, so a balance near convergence takes one evaluation. Stop when the change is below ``tolerance`` times the deformation's range.
 Consecutive Reynolds solves reuse the previous LU factors as a CG preconditioner while the
 pressurised set stays (reynolds.BlockInverse). The solve runs with one BLAS thread.
 Every solve reports its residuals and a ``converged`` flag; nothing is silently accepted.
@@ -46,7 +47,7 @@ from scipy.sparse.linalg import LinearOperator, gmres
 from .anderson import AndersonMixer
 from .materials import effective_modulus
 from .mesh import Mesh, build_mesh
-from .newton import coupled_newton_step
+from .newton import Backtracking, coupled_newton_step
 
 
 class SolveError(RuntimeError):
@@ -410,6 +411,17 @@ def contact_newton_step(model: Model, state: State, residual: np.ndarray) -> np.
     return step.reshape(shape)
 
 
+def _predicted_position(state: State, force: float, change: np.ndarray) -> float:
+    """z balancing ``force`` after the deformation changes by ``change``, to first order from
+    the state's load gradient: F + dF/dz dz + sum_j dF/dh_j change_j = force (the state's z
+    when the slope is not negative)."""
+    gradient = state.load_gradient
+    slope = float(np.sum(gradient))
+    if not slope < 0.0:
+        return state.z
+    return state.z - (state.total_force - force + float(np.sum(gradient * change))) / slope
+
+
 def deformation_stepper(model: Model):
     """(step function, AndersonMixer or None) of the coupled iteration's deformation update.
 
@@ -421,7 +433,8 @@ def deformation_stepper(model: Model):
     k ~ h^3 makes full Newton steps overshoot to h <= 0 (elastohydrodynamic line contacts,
     test_lubricated). Anderson mixing picks up what the contact step leaves out, and damps
     the transient's steps as before; a steady coupled Newton step is taken as it is (mixing
-    it costs iterations: 5 -> 6-8 on Table 1), until it stalls (NEWTON_STALL_FACTOR).
+    it costs iterations: 5 -> 6-8 on Table 1), until it stalls (NEWTON_STALL_FACTOR): then
+    it is shortened by backtracking, and where that fails too the mixed contact step takes over.
     """
     rough_reynolds = model.contact is not None and model.scene.effects.cavitation == "reynolds"
     coupled = model.hydrodynamic and model.deformation is not None and (model.squeeze is not None or rough_reynolds)
@@ -431,9 +444,10 @@ def deformation_stepper(model: Model):
 
 # Newton steps cut the deformation change by far more than this factor per iteration. After
 # NEWTON_STALL_ITERATIONS iterations in a row that do not cut the smallest change so far by
-# it, the coupled Newton iteration has stalled and starts again with the mixed contact step
-# (coupled_solve). One worse step is no stall: far from the solution (a cold start on the
-# coarsest mesh) Newton's change can grow once before it falls.
+# it, the coupled Newton iteration has stalled: its steps are then shortened by backtracking
+# (newton.Backtracking), and where no shorter step lowers the change it starts again with
+# the mixed contact step (coupled_solve). One worse step is no stall: far from the solution
+# (a cold start on the coarsest mesh) Newton's change can grow once before it falls.
 NEWTON_STALL_FACTOR = 0.5
 NEWTON_STALL_ITERATIONS = 3
 
@@ -531,6 +545,7 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
     deformation_converged = False
     failure = ""
     iteration = 0
+    backtracking = None  # Backtracking of the coupled Newton steps once they stall
     try:
         for iteration in range(1, max_iterations + 1):
             state, stiffness = balance_force(model, delta, z, balance_tol, stiffness, cavitated, reynolds,
@@ -547,30 +562,40 @@ def coupled_solve(model: Model, initial: dict | None = None, tolerance: float | 
             if relative_change <= tol:
                 deformation_converged = True
                 break
+            if backtracking is not None:
+                fraction = backtracking.retry(relative_change)
+                if fraction is not None:  # too little decrease: a shorter step from the anchor
+                    anchor, _, anchored_step, anchored_state = backtracking.anchor
+                    delta = anchor + fraction * anchored_step
+                    z = _predicted_position(anchored_state, force, fraction * anchored_step)
+                    continue
             balance_tol = max(tol, min(LOOSEST_BALANCE_TOLERANCE, INEXACT_BALANCE_FACTOR * relative_change))
             if relative_change <= NEWTON_STALL_FACTOR * smallest_change:
                 smallest_change, stalled = relative_change, 0
             else:
                 stalled += 1
             if mixer is None and stalled >= NEWTON_STALL_ITERATIONS:
-                # the coupled Newton steps stalled: near a fold the cavitated set can toggle
-                # between two states (Table 1, 51^2, 0.0158 m/s: 650 <-> 654 nodes). Start
-                # again from this level's start with the mixed contact step
-                # (deformation_stepper), the iteration that converged there before the
-                # Newton step existed; from where Newton stalled it can wander instead
-                # (Fig. 12, F = 30 N: 200 iterations)
-                deformation_step, mixer = contact_newton_step, AndersonMixer(beta=1.0)
-                delta, z, stiffness, cavitated, pressure_guess = restart[0].copy(), *restart[1:]
-                reynolds, balance_tol = None, LOOSEST_BALANCE_TOLERANCE
-                continue
+                if backtracking is None:
+                    # the coupled Newton steps stalled: near a fold the cavitated set can
+                    # toggle between two states (Table 1, 51^2, 0.0158 m/s: 650 <-> 654
+                    # nodes) and full steps cycle. From here each step is shortened until
+                    # the deformation change falls (newton.Backtracking).
+                    backtracking = Backtracking()
+                elif backtracking.exhausted:
+                    # no shorter step helps either (between a contact- and a fluid-carried
+                    # branch, Fig. 8, F = 20 N, 0.158 m/s). Start again from this level's
+                    # start with the mixed contact step (deformation_stepper), the iteration
+                    # that converged there before the Newton step existed; from where
+                    # Newton stalled it can wander instead (Fig. 12, F = 30 N: 200 iterations)
+                    deformation_step, mixer, backtracking = contact_newton_step, AndersonMixer(beta=1.0), None
+                    delta, z, stiffness, cavitated, pressure_guess = restart[0].copy(), *restart[1:]
+                    reynolds, balance_tol = None, LOOSEST_BALANCE_TOLERANCE
+                    continue
             step = deformation_step(model, state, new_delta - delta)
+            if backtracking is not None:
+                backtracking.accept(delta, relative_change, step, state)
             new_delta = delta + step if mixer is None else mixer.step(delta, delta + step)
-            # first-order prediction of the balanced position for the new deformation:
-            # F + dF/dz dz + sum_j dF/dh_j (new_delta - delta)_j = applied force
-            gradient = state.load_gradient
-            slope = float(np.sum(gradient))
-            if slope < 0.0:
-                z -= (state.total_force - force + float(np.sum(gradient * (new_delta - delta)))) / slope
+            z = _predicted_position(state, force, new_delta - delta)
             delta = new_delta
         if abs(force - state.total_force) > tol * force:  # last inner solve was inexact
             state, _ = balance_force(model, state.delta, state.z, tol, stiffness, cavitated, reynolds)
