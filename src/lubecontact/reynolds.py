@@ -268,12 +268,14 @@ class ExtendedFactors:
         return solution
 
 
-def _preconditioned_cg(block, rhs, preconditioner):
+def _preconditioned_cg(block, rhs, preconditioner, guess=None):
     """x with block x = rhs by conjugate gradients preconditioned with ``preconditioner``
-    (ExtendedFactors: the exact inverse of a nearby SPD matrix); None when it does not
-    converge fast (see REUSE_CG_*)."""
-    x = np.zeros_like(rhs)
-    r = rhs.copy()
+    (ExtendedFactors: the exact inverse of a nearby SPD matrix), from ``guess`` (else 0);
+    None when it does not converge fast (see REUSE_CG_*). The stopping test is relative to
+    rhs whatever the start, so a close guess (the pressure of the previous active-set step
+    or evaluation) saves the steps that would have resolved what it already has."""
+    x = np.zeros_like(rhs) if guess is None else np.array(guess, dtype=float)
+    r = rhs.copy() if guess is None else rhs - block @ x
     target = REUSE_CG_TOLERANCE * np.linalg.norm(rhs)
     start = np.linalg.norm(r)
     if start <= target:
@@ -332,24 +334,26 @@ class BlockInverse:
         nearby ones (ExtendedFactors)."""
         return self.lu if self.lu is not None else self.preconditioner
 
-    def solve(self, rhs):
+    def solve(self, rhs, guess=None):
+        """A_FF^-1 rhs; ``guess``, an approximate solution, starts CG (unused by own factors)."""
         if self.lu is None:
-            x = _preconditioned_cg(self.block, rhs, self.preconditioner)
+            x = _preconditioned_cg(self.block, rhs, self.preconditioner, guess)
             if x is not None:
                 return x
             self.lu = _factorize(self.block)
         return self.lu.solve(rhs)
 
 
-def _solve_on(matrix, rhs, free, index, nearby=None):
+def _solve_on(matrix, rhs, free, index, nearby=None, guess=None):
     """(p, BlockInverse of A_FF or None) with p = 0 off the free set and A_FF p_F = b_F on
     it; ``index``: flat mesh index of each unknown; ``nearby``: the BlockInverse of
-    a nearby matrix to precondition with (BlockInverse)."""
+    a nearby matrix to precondition with (BlockInverse); ``guess``: a pressure over all
+    unknowns close to p, to start CG from (BlockInverse.solve)."""
     p = np.zeros(rhs.size)
     inverse = None
     if free.any():
         inverse = BlockInverse(matrix[free][:, free].tocsc(), index[free], nearby)
-        p[free] = inverse.solve(rhs[free])
+        p[free] = inverse.solve(rhs[free], None if guess is None else guess[free])
     return p, inverse
 
 
@@ -416,16 +420,18 @@ def _nested_guess(mesh, coarse, system, expected_gap, coefficient, speed, max_it
     return smoothed_cavitated_set(system, _interpolate(solution.pressure, coarse, mesh))
 
 
-def _active_set(matrix, rhs, cavitated, max_steps, index, nearby=None):
+def _active_set(matrix, rhs, cavitated, max_steps, index, nearby=None, guess=None):
     """Primal-dual active-set steps from the cavitated set ``cavitated`` (unknown-node mask):
     (p, cavitated set of p, steps, whether the set repeated, BlockInverse of the last step).
     ``index``: flat mesh index of each unknown; ``nearby``: a BlockInverse (the previous
-    evaluation's) whose factors may precondition the first step; each later step is
-    preconditioned by the factors of the step before (BlockInverse), so a free boundary
-    that moves by a few nodes costs back-substitutions, not a factorisation."""
+    evaluation's) whose factors may precondition the first step, ``guess`` its pressure
+    (over the unknowns) to start from; each later step is preconditioned by the factors of
+    the step before (BlockInverse) and starts from its pressure, so a free boundary that
+    moves by a few nodes costs back-substitutions, not a factorisation."""
     w_tol = SET_TOLERANCE * np.abs(rhs).max(initial=0.0)
     for steps in range(1, max_steps + 1):
-        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby)
+        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby, guess)
+        guess = p
         nearby = factor if factor is not None else nearby
         w = matrix @ p - rhs
         p_tol = SET_TOLERANCE * np.abs(p).max(initial=0.0)
@@ -482,9 +488,10 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     matrix, rhs = system.matrix, system.rhs
     index = np.flatnonzero(system.unknown)
     nearby = _reusable(mesh, reuse)
+    previous = None if nearby is None else reuse.pressure[system.unknown]  # starts CG (BlockInverse)
     if not cavitation:
         cavitated = np.zeros(rhs.size, dtype=bool)
-        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby)
+        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby, previous)
         iterations, repeated = 1, True
     else:
         iterations, repeated = 0, False
@@ -495,7 +502,7 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
             warm = np.asarray(cavitated_guess, dtype=bool)[system.unknown]
         if warm is not None:
             p, cavitated, iterations, repeated, factor = _active_set(
-                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), index, nearby
+                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), index, nearby, previous
             )
         if not repeated and iterations < max_iterations:
             cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate)
