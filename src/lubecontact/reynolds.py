@@ -272,8 +272,8 @@ def _preconditioned_cg(block, rhs, preconditioner, guess=None):
     """x with block x = rhs by conjugate gradients preconditioned with ``preconditioner``
     (ExtendedFactors: the exact inverse of a nearby SPD matrix), from ``guess`` (else 0);
     None when it does not converge fast (see REUSE_CG_*). The stopping test is relative to
-    rhs whatever the start, so a close guess (the pressure of the previous active-set step
-    or evaluation) saves the steps that would have resolved what it already has."""
+    rhs whatever the start, so a close guess (the previous evaluation's pressure) saves the
+    steps that would have resolved what it already has."""
     x = np.zeros_like(rhs) if guess is None else np.array(guess, dtype=float)
     r = rhs.copy() if guess is None else rhs - block @ x
     target = REUSE_CG_TOLERANCE * np.linalg.norm(rhs)
@@ -425,13 +425,15 @@ def _active_set(matrix, rhs, cavitated, max_steps, index, nearby=None, guess=Non
     (p, cavitated set of p, steps, whether the set repeated, BlockInverse of the last step).
     ``index``: flat mesh index of each unknown; ``nearby``: a BlockInverse (the previous
     evaluation's) whose factors may precondition the first step, ``guess`` its pressure
-    (over the unknowns) to start from; each later step is preconditioned by the factors of
-    the step before (BlockInverse) and starts from its pressure, so a free boundary that
-    moves by a few nodes costs back-substitutions, not a factorisation."""
+    (over the unknowns) to start that step's CG from; each later step is preconditioned by
+    the factors of the step before (BlockInverse), so a free boundary that moves by a few
+    nodes costs back-substitutions, not a factorisation. A later step's CG starts from zero:
+    started from the step before, its rounding moved nodes at the free boundary across the
+    set test (SET_TOLERANCE is as fine as CG's tolerance), the set cycled and the solves fell
+    back to cold starts (a stop scene at 51^2: 240 -> 5800 factorisations)."""
     w_tol = SET_TOLERANCE * np.abs(rhs).max(initial=0.0)
     for steps in range(1, max_steps + 1):
-        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby, guess)
-        guess = p
+        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby, guess if steps == 1 else None)
         nearby = factor if factor is not None else nearby
         w = matrix @ p - rhs
         p_tol = SET_TOLERANCE * np.abs(p).max(initial=0.0)
@@ -488,7 +490,10 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     matrix, rhs = system.matrix, system.rhs
     index = np.flatnonzero(system.unknown)
     nearby = _reusable(mesh, reuse)
-    previous = None if nearby is None else reuse.pressure[system.unknown]  # starts CG (BlockInverse)
+    # the pressure of the solve before starts CG (BlockInverse), in a steady solve only: in a
+    # transient step the squeeze term (1/dt) moves the pressure far between evaluations, and
+    # started from it a stop scene took twice the factorisations (79k against 38k)
+    previous = None if nearby is None or squeeze_rate is not None else reuse.pressure[system.unknown]
     if not cavitation:
         cavitated = np.zeros(rhs.size, dtype=bool)
         p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby, previous)
