@@ -278,43 +278,6 @@ def test_factors_of_a_nearby_set_solve_exactly_without_a_factorisation():
         assert (inverse.lu is not None) == factorised
 
 
-def test_cg_from_a_close_guess_reaches_the_direct_solution_in_fewer_steps():
-    """CG preconditioned with the factors of a nearby matrix, started from a close guess (the
-    previous evaluation's pressure), ends at scipy spsolve's solution of the new block to the
-    same tolerance as from zero, with fewer preconditioner solves."""
-    from scipy.sparse.linalg import spsolve, splu
-
-    from lubecontact.reynolds import ExtendedFactors, _preconditioned_cg, reynolds_system
-
-    mesh, hT, k = rough_cylinder_2d(nx=61, ny=41)
-    system = reynolds_system(mesh, hT, k, 0.1)
-    unknowns = system.matrix.shape[0]
-    index = np.arange(unknowns)
-    old = system.matrix.tocsc()
-    wave = np.sin(np.linspace(0.0, 3.0 * np.pi, k.size)).reshape(k.shape)  # a non-uniform film change
-    new = reynolds_system(mesh, hT * (1.0 + 0.01 * wave), k * (1.0 + 0.03 * wave), 0.1)
-    block = new.matrix.tocsc()
-    truth = spsolve(block, new.rhs)
-    previous = spsolve(old, system.rhs)  # the pressure of the nearby problem
-    assert np.linalg.norm(previous - truth) > 1e-3 * np.linalg.norm(truth)  # a guess, not the answer
-
-    class Counted(ExtendedFactors):
-        solves = 0
-
-        def solve(self, rhs):
-            Counted.solves += 1
-            return super().solve(rhs)
-
-    steps = {}
-    for name, guess in (("zero", None), ("previous", previous)):
-        Counted.solves = 0
-        x = _preconditioned_cg(block, new.rhs, Counted(splu(old), index, index, block), guess)
-        assert x is not None
-        np.testing.assert_allclose(x, truth, rtol=1e-9, atol=1e-9 * np.abs(truth).max())
-        steps[name] = Counted.solves
-    assert steps["previous"] < steps["zero"], steps
-
-
 def test_capacitance_corrections_invert_the_block_on_a_moved_set_exactly():
     """ExtendedFactors from the factors of A on one set is the exact inverse of A on a set
     with nodes removed and added (the Schur complement identities it is built on), checked

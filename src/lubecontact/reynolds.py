@@ -268,14 +268,12 @@ class ExtendedFactors:
         return solution
 
 
-def _preconditioned_cg(block, rhs, preconditioner, guess=None):
+def _preconditioned_cg(block, rhs, preconditioner):
     """x with block x = rhs by conjugate gradients preconditioned with ``preconditioner``
-    (ExtendedFactors: the exact inverse of a nearby SPD matrix), from ``guess`` (else 0);
-    None when it does not converge fast (see REUSE_CG_*). The stopping test is relative to
-    rhs whatever the start, so a close guess (the previous evaluation's pressure) saves the
-    steps that would have resolved what it already has."""
-    x = np.zeros_like(rhs) if guess is None else np.array(guess, dtype=float)
-    r = rhs.copy() if guess is None else rhs - block @ x
+    (ExtendedFactors: the exact inverse of a nearby SPD matrix); None when it does not
+    converge fast (see REUSE_CG_*)."""
+    x = np.zeros_like(rhs)
+    r = rhs.copy()
     target = REUSE_CG_TOLERANCE * np.linalg.norm(rhs)
     start = np.linalg.norm(r)
     if start <= target:
@@ -334,26 +332,24 @@ class BlockInverse:
         nearby ones (ExtendedFactors)."""
         return self.lu if self.lu is not None else self.preconditioner
 
-    def solve(self, rhs, guess=None):
-        """A_FF^-1 rhs; ``guess``, an approximate solution, starts CG (unused by own factors)."""
+    def solve(self, rhs):
         if self.lu is None:
-            x = _preconditioned_cg(self.block, rhs, self.preconditioner, guess)
+            x = _preconditioned_cg(self.block, rhs, self.preconditioner)
             if x is not None:
                 return x
             self.lu = _factorize(self.block)
         return self.lu.solve(rhs)
 
 
-def _solve_on(matrix, rhs, free, index, nearby=None, guess=None):
+def _solve_on(matrix, rhs, free, index, nearby=None):
     """(p, BlockInverse of A_FF or None) with p = 0 off the free set and A_FF p_F = b_F on
     it; ``index``: flat mesh index of each unknown; ``nearby``: the BlockInverse of
-    a nearby matrix to precondition with (BlockInverse); ``guess``: a pressure over all
-    unknowns close to p, to start CG from (BlockInverse.solve)."""
+    a nearby matrix to precondition with (BlockInverse)."""
     p = np.zeros(rhs.size)
     inverse = None
     if free.any():
         inverse = BlockInverse(matrix[free][:, free].tocsc(), index[free], nearby)
-        p[free] = inverse.solve(rhs[free], None if guess is None else guess[free])
+        p[free] = inverse.solve(rhs[free])
     return p, inverse
 
 
@@ -420,20 +416,16 @@ def _nested_guess(mesh, coarse, system, expected_gap, coefficient, speed, max_it
     return smoothed_cavitated_set(system, _interpolate(solution.pressure, coarse, mesh))
 
 
-def _active_set(matrix, rhs, cavitated, max_steps, index, nearby=None, guess=None):
+def _active_set(matrix, rhs, cavitated, max_steps, index, nearby=None):
     """Primal-dual active-set steps from the cavitated set ``cavitated`` (unknown-node mask):
     (p, cavitated set of p, steps, whether the set repeated, BlockInverse of the last step).
     ``index``: flat mesh index of each unknown; ``nearby``: a BlockInverse (the previous
-    evaluation's) whose factors may precondition the first step, ``guess`` its pressure
-    (over the unknowns) to start that step's CG from; each later step is preconditioned by
-    the factors of the step before (BlockInverse), so a free boundary that moves by a few
-    nodes costs back-substitutions, not a factorisation. A later step's CG starts from zero:
-    started from the step before, its rounding moved nodes at the free boundary across the
-    set test (SET_TOLERANCE is as fine as CG's tolerance), the set cycled and the solves fell
-    back to cold starts (a stop scene at 51^2, 1 Pa s: 240 -> 5800 factorisations)."""
+    evaluation's) whose factors may precondition the first step; each later step is
+    preconditioned by the factors of the step before (BlockInverse), so a free boundary
+    that moves by a few nodes costs back-substitutions, not a factorisation."""
     w_tol = SET_TOLERANCE * np.abs(rhs).max(initial=0.0)
     for steps in range(1, max_steps + 1):
-        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby, guess if steps == 1 else None)
+        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby)
         nearby = factor if factor is not None else nearby
         w = matrix @ p - rhs
         p_tol = SET_TOLERANCE * np.abs(p).max(initial=0.0)
@@ -490,13 +482,9 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     matrix, rhs = system.matrix, system.rhs
     index = np.flatnonzero(system.unknown)
     nearby = _reusable(mesh, reuse)
-    # the pressure of the solve before starts CG (BlockInverse), in a steady solve only: in a
-    # transient step the squeeze term (1/dt) moves the pressure far between evaluations, and
-    # started from it a stop scene (51^2, 0.1 Pa s) took twice the factorisations (79k, 38k)
-    previous = None if nearby is None or squeeze_rate is not None else reuse.pressure[system.unknown]
     if not cavitation:
         cavitated = np.zeros(rhs.size, dtype=bool)
-        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby, previous)
+        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby)
         iterations, repeated = 1, True
     else:
         iterations, repeated = 0, False
@@ -507,7 +495,7 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
             warm = np.asarray(cavitated_guess, dtype=bool)[system.unknown]
         if warm is not None:
             p, cavitated, iterations, repeated, factor = _active_set(
-                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), index, nearby, previous
+                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), index, nearby
             )
         if not repeated and iterations < max_iterations:
             cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate)
