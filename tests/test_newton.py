@@ -116,7 +116,11 @@ def test_stalled_newton_steps_backtrack_to_the_mixed_steps_solution(monkeypatch)
     s = lc.load_scene(TABLE1, {"mesh.nx": 51, "mesh.ny": 51, "operating.speed": 0.0158})
     backtracked = lc.solve(s)
     assert any(fractions)  # it engaged and shortened a step
-    monkeypatch.setattr(solver, "deformation_stepper", lambda model: (solver.contact_newton_step, AndersonMixer(beta=1.0)))
+
+    def mixed_steps(model):  # a fresh mixer for each level, as deformation_stepper gives
+        return solver.contact_newton_step, AndersonMixer(beta=1.0)
+
+    monkeypatch.setattr(solver, "deformation_stepper", mixed_steps)
     mixed = lc.solve(s)
     assert backtracked["converged"].item() == 1 and mixed["converged"].item() == 1
     for name in ("contact_resistance", "friction_coefficient", "separation", "fluid_force"):

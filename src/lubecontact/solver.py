@@ -25,7 +25,8 @@ Algorithm (only the enabled effects are assembled and run):
    (I + K D) step = K(p + p_c) - delta with D = -dp_c/dh >= 0 (a Newton step for the dry
    contact), and accelerated by Anderson mixing (also for smooth steady films, where full
    coupled Newton steps overshoot to h <= 0). The next z is predicted to first order from
-   the load gradient, so a balance near convergence takes one evaluation. Stop when the change is below ``tolerance`` times the deformation's range.
+   the load gradient, so a balance near convergence takes one evaluation. Stop when the
+   change is below ``tolerance`` times the deformation's range.
 Consecutive Reynolds solves reuse the previous LU factors as a CG preconditioner while the
 pressurised set stays (reynolds.BlockInverse). The solve runs with one BLAS thread.
 Every solve reports its residuals and a ``converged`` flag; nothing is silently accepted.
