@@ -506,7 +506,7 @@ _ALL_KEYS = [f"{s}.{k}" for s, cls in _SECTIONS.items() for k in cls.keys()]
 # --- loading -------------------------------------------------------------------------------
 
 
-class _UniqueKeyLoader(yaml.SafeLoader):
+class _UniqueKeyLoader(yaml.CSafeLoader):
     """SafeLoader that refuses a key given twice in one mapping (PyYAML keeps the last)."""
 
     def construct_mapping(self, node, deep=False):
