@@ -28,6 +28,7 @@ def no_solve(monkeypatch):
         raise AssertionError("solved before refusing")
 
     monkeypatch.setattr(lubecontact.solver, "solve", forbidden)
+    monkeypatch.setattr(lubecontact.solver, "solve_case", forbidden)
     monkeypatch.setattr(lubecontact.speed_sweep, "sweep", forbidden)
 
 
@@ -170,7 +171,7 @@ def test_internal_error_is_one_line_with_a_saved_traceback(tmp_path, capsys, mon
     def broken(*args, **kwargs):
         raise ZeroDivisionError("simulated bug")
 
-    monkeypatch.setattr(lubecontact.solver, "solve", broken)
+    monkeypatch.setattr(lubecontact.solver, "solve_case", broken)
     monkeypatch.setenv("TMPDIR", str(tmp_path))
     import tempfile
 
@@ -186,13 +187,13 @@ def test_internal_error_is_one_line_with_a_saved_traceback(tmp_path, capsys, mon
 def test_interrupt_and_a_failed_write_are_one_line_each(tmp_path, capsys, monkeypatch):
     import errno
 
-    import lubecontact.output
+    import lubecontact.case_result
     import lubecontact.solver
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(lubecontact.solver, "solve", interrupted)
+    monkeypatch.setattr(lubecontact.solver, "solve_case", interrupted)
     code, _, err = run(capsys, "solve", SCENE, *TINY, "--out", str(tmp_path / "x.nc"))
     assert code == cli.EXIT_INTERRUPTED and err == "lubecontact: interrupted; nothing was written\n"
     monkeypatch.undo()
@@ -200,7 +201,7 @@ def test_interrupt_and_a_failed_write_are_one_line_each(tmp_path, capsys, monkey
     def disk_full(*args, **kwargs):
         raise OSError(errno.ENOSPC, "No space left on device")
 
-    monkeypatch.setattr(lubecontact.output, "write_case", disk_full)
+    monkeypatch.setattr(lubecontact.case_result.CaseResult, "write", disk_full)
     code, _, err = run(capsys, "solve", SCENE, *TINY, "--out", str(tmp_path / "x.nc"))
     assert code == cli.EXIT_NOT_CONVERGED and err.count("\n") == 1 and "No space left on device" in err
     assert not (tmp_path / "x.nc").exists()

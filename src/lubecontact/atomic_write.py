@@ -1,20 +1,29 @@
-"""Atomic text files: a file is there whole or not at all, so a killed process never
-leaves a truncated one that a later run would take for complete."""
+"""Atomic files: a file is there whole or not at all, so a killed process never leaves a
+truncated one that a later run would take for complete."""
 
 from __future__ import annotations
 
 import os
+from contextlib import contextmanager
 from pathlib import Path
 
 
-def write_text(path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in the same directory and one
-    rename; the temporary file is removed if the write fails."""
+@contextmanager
+def atomic_path(path):
+    """Yield a temporary path in ``path``'s directory (created if missing) to write to; on
+    success it is renamed to ``path`` in one step, on failure removed."""
     path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
-        tmp.write_text(text)
+        yield tmp
         os.replace(tmp, path)
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+def write_text(path, text: str) -> None:
+    """Write ``text`` to ``path`` atomically (``atomic_path``)."""
+    with atomic_path(path) as tmp:
+        tmp.write_text(text)

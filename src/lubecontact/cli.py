@@ -83,18 +83,31 @@ def _load(args):
     return load_scene(args.scene, overrides)
 
 
-def _summary(ds) -> str:
-    lines = [f"effects run: {ds.attrs['effects_run']}"]
-    for name in ("contact_resistance", "spot_resistance", "macro_constriction_resistance", "film_resistance",
-                 "friction_coefficient", "contact_force", "fluid_force",
-                 "min_film_thickness", "iterations", "force_residual", "solve_time"):
-        var = ds[name]
-        values = var.values.ravel()
-        shown = f"{values[0]:.6g}" if values.size == 1 else f"{values.min():.4g} .. {values.max():.4g}"
-        lines.append(f"{name:>22s} = {shown} {var.attrs['units']}")
-    ok = int(ds["converged"].values.min())
-    lines.append(f"{'converged':>22s} = {'yes' if ok else 'NO'}")
+_SHOWN = ("contact_resistance", "spot_resistance", "macro_constriction_resistance", "film_resistance",
+          "friction_coefficient", "contact_force", "fluid_force",
+          "min_film_thickness", "iterations", "force_residual", "solve_time", "converged")
+
+
+def _summary(effects_run: str, values) -> str:
+    """What the terminal shows of a case or a sweep; ``values[name]`` is an array (one value
+    a point) of each name in _SHOWN."""
+    import numpy as np
+
+    from .output import SCALARS
+
+    lines = [f"effects run: {effects_run}"]
+    for name in _SHOWN[:-1]:
+        flat = np.asarray(values[name]).ravel()
+        shown = f"{flat[0]:.6g}" if flat.size == 1 else f"{flat.min():.4g} .. {flat.max():.4g}"
+        lines.append(f"{name:>22s} = {shown} {SCALARS[name][0]}")
+    lines.append(f"{'converged':>22s} = {'yes' if _converged(values) else 'NO'}")
     return "\n".join(lines)
+
+
+def _converged(values) -> bool:
+    import numpy as np
+
+    return int(np.asarray(values["converged"]).min()) == 1
 
 
 class _BadInput(Exception):
@@ -163,31 +176,34 @@ def _run(args) -> int:
         print(f"# hash: {scene.hash}")
         print(scene.canonical_yaml(), end="")
         return EXIT_OK
-    from .output import write_case
     from .resources import elapsed_bar
 
     out, est = _checked(args, scene, 1 if speeds is None else len(speeds))
-    if args.command == "solve":
-        from .solver import solve
+    if args.command == "solve":  # no xarray: the case is written with netCDF4 (case_result)
+        from .solver import solve_case
 
         with elapsed_bar(est):
-            ds = solve(scene, fields=args.fields)
+            result, _ = solve_case(scene, fields=args.fields)
+        write, effects_run, values = result.write, result.attrs["effects_run"], result.scalars
     elif args.command == "transient":
         from .unsteady.cli import run_transient
 
         return run_transient(scene, out)
     else:
+        from .output import write_case
         from .speed_sweep import sweep
 
         ds = sweep(scene, speeds)
+        write, effects_run = (lambda path: write_case(ds, path)), ds.attrs["effects_run"]
+        values = {name: ds[name].values for name in _SHOWN}
     try:
-        write_case(ds, out)
+        write(out)
     except OSError as err:
         print(f"lubecontact: could not write {args.out}: {err.strerror or err}; the result is lost", file=sys.stderr)
         return EXIT_NOT_CONVERGED
-    print(_summary(ds))
+    print(_summary(effects_run, values))
     print(f"wrote {args.out}")
-    if int(ds["converged"].values.min()) != 1:
+    if not _converged(values):
         print("lubecontact: the solve did NOT converge (converged = 0 in the file)", file=sys.stderr)
         return EXIT_NOT_CONVERGED
     return EXIT_OK

@@ -1,9 +1,13 @@
-"""The Dataset of one operating point (DESIGN.md "Output of one case"), CF-style attrs."""
+"""What a case holds (DESIGN.md "Output of one case": names, units, long names of its
+variables; case_result.CaseResult assembles and writes one) and the atomic, CF-1.10
+netCDF writer of a Dataset (a case as a Dataset, a figure's collected data)."""
 
 from __future__ import annotations
 
-import numpy as np
-import xarray as xr
+import typing
+
+if typing.TYPE_CHECKING:
+    import xarray as xr
 
 # name: (units, long_name). Every variable a case writes is listed here, so that no
 # quantity leaves the model without its unit.
@@ -44,43 +48,9 @@ FIELDS = {
 INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes", "valid")
 
 
-def _attrs(table, name):
-    units, long_name = table[name]
-    return {"units": units, "long_name": long_name}
-
-
-def case_dataset(scene, scalars: dict, fields: dict | None, mesh, effects_run: dict, notes: str = "") -> xr.Dataset:
-    """Assemble one case's Dataset. ``scalars`` must hold exactly the keys of SCALARS."""
-    from . import __version__  # looked up on first use (importlib.metadata)
-
-    missing = set(SCALARS) - set(scalars)
-    if missing:
-        raise KeyError(f"case output lacks {sorted(missing)}")
-    data_vars = {}
-    for name, value in scalars.items():
-        dtype = np.int32 if name in INTEGER_SCALARS else np.float64
-        data_vars[name] = xr.Variable((), np.asarray(value, dtype=dtype), _attrs(SCALARS, name))
-    coords = {}
-    if fields:
-        coords["x"] = xr.Variable(("x",), mesh.x, {"units": "m", "long_name": "position along sliding (inlet at x_min)"})
-        coords["y"] = xr.Variable(("y",), mesh.y, {"units": "m", "long_name": "position along the cylinder axis"})
-        for name, value in fields.items():
-            data_vars[name] = xr.Variable(("y", "x"), np.asarray(value, dtype=np.float64), _attrs(FIELDS, name))
-    attrs = {
-        "title": "lubecontact case: one operating point of a lubricated rough electrical contact",
-        "Conventions": "CF-1.10",
-        "scene": scene.canonical_yaml(),
-        "scene_hash": scene.hash,
-        "lubecontact_version": __version__,
-        "effects_run": ",".join(k for k, v in effects_run.items() if v) or "none",
-        "notes": notes,
-    }
-    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
-
-
-def cf_ready(dataset: xr.Dataset) -> tuple[xr.Dataset, dict]:
-    """(dataset with a CF ``history`` line appended, netCDF encoding) for CF-1.10: coordinate
-    variables carry no ``_FillValue`` (CF 2.5.1; xarray adds NaN to every float by default)."""
+def history_line(previous: str | None = None) -> str:
+    """CF ``history``: ``previous`` with a line appended saying when and by what this file
+    is written."""
     import sys
     from datetime import datetime, timezone
     from pathlib import Path
@@ -89,25 +59,22 @@ def cf_ready(dataset: xr.Dataset) -> tuple[xr.Dataset, dict]:
 
     stamp = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     line = f"{stamp} written by lubecontact {__version__} ({Path(sys.argv[0]).name or 'python'})"
-    previous = dataset.attrs.get("history")
+    return f"{previous}\n{line}" if previous else line
+
+
+def cf_ready(dataset: xr.Dataset) -> tuple[xr.Dataset, dict]:
+    """(dataset with a CF ``history`` line appended, netCDF encoding) for CF-1.10: coordinate
+    variables carry no ``_FillValue`` (CF 2.5.1; xarray adds NaN to every float by default)."""
     out = dataset.copy()
-    out.attrs["history"] = f"{previous}\n{line}" if previous else line
+    out.attrs["history"] = history_line(dataset.attrs.get("history"))
     encoding = {name: {"_FillValue": None} for name in out.coords if out[name].dtype.kind in "fc"}
     return out, encoding
 
 
 def write_case(dataset: xr.Dataset, path) -> None:
     """Write atomically: a killed process never leaves a file that looks complete."""
-    import os
-    from pathlib import Path
+    from .atomic_write import atomic_path
 
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     dataset, encoding = cf_ready(dataset)
-    try:
+    with atomic_path(path) as tmp:
         dataset.to_netcdf(tmp, encoding=encoding)
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()

@@ -681,13 +681,21 @@ def point_outputs(model: Model, state: State) -> tuple[dict, list[str]]:
 
 
 def solve(scene, fields: bool = False, initial: dict | None = None, return_state: bool = False):
-    """Solve one operating point; returns the case ``xarray.Dataset`` (DESIGN.md outputs).
+    """Solve one operating point; returns the case ``xarray.Dataset`` (DESIGN.md outputs),
+    with ``return_state`` also the solver's final state (``solve_case``)."""
+    result, state = solve_case(scene, fields, initial)
+    ds = result.to_dataset()
+    return (ds, state) if return_state else ds
+
+
+def solve_case(scene, fields: bool = False, initial: dict | None = None):
+    """Solve one operating point; returns (case_result.CaseResult, the solver's final state).
 
     ``initial`` ({"z": float, "delta": array}, optionally "cavitated" and "pressure" of a
     previous solution on this mesh) warm-starts the coupling loop (a sweep's continuation);
     a cold start must give the same answer within tolerance.
     """
-    from .output import case_dataset
+    from .case_result import CaseResult
     from .validity import assess
 
     start = time.perf_counter()
@@ -731,8 +739,5 @@ def solve(scene, fields: bool = False, initial: dict | None = None, return_state
         }
         if getattr(state.reynolds, "content", None) is not None:  # effects.cavitation: jfo
             field_data["film_content"] = state.reynolds.content
-    ds = case_dataset(requested, scalars, field_data, mesh, model.effects_run, "; ".join(notes))
-    ds.attrs["validity"] = ",".join(validity) or "ok"
-    if return_state:
-        return ds, state
-    return ds
+    result = CaseResult.build(requested, scalars, field_data, mesh, model.effects_run, "; ".join(notes), ",".join(validity) or "ok")
+    return result, state

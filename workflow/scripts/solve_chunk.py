@@ -18,8 +18,8 @@ import lubecontact
 from lubecontact.casefiles import FINGERPRINT, case_problem
 from lubecontact.grid import sources_fingerprint
 from lubecontact.joblog import job_log
-from lubecontact.output import write_case
 from lubecontact.plans import read_plan
+from lubecontact.solver import solve_case
 
 
 def main(sm):
@@ -38,13 +38,13 @@ def main(sm):
                 f"{scene.hash}; the scene file changed since the workflow was planned, rerun snakemake"
             )
         try:
-            ds = lubecontact.solve(scene)
+            result, _ = solve_case(scene)  # a case file without xarray (lubecontact.case_result)
         except Exception as err:
             raise RuntimeError(f"case {case['id']} ({case['set']}): solve failed") from err
-        ds.attrs[FINGERPRINT] = fingerprint
-        write_case(ds, path)
-        status = "converged" if int(ds["converged"]) == 1 else "NOT CONVERGED (converged = 0 in the file)"
-        print(f"{case['id']}: {status}, {int(ds['iterations'])} iterations, {float(ds['solve_time']):.2f} s, {case['set']}")
+        result.with_attrs(**{FINGERPRINT: fingerprint}).write(path)
+        out = result.scalars
+        status = "converged" if int(out["converged"]) == 1 else "NOT CONVERGED (converged = 0 in the file)"
+        print(f"{case['id']}: {status}, {int(out['iterations'])} iterations, {float(out['solve_time']):.2f} s, {case['set']}")
 
 
 with job_log(snakemake.log[0]):
