@@ -9,11 +9,13 @@ from pathlib import Path
 
 
 @contextmanager
-def atomic_path(path):
-    """Yield a temporary path in ``path``'s directory (created if missing) to write to; on
-    success it is renamed to ``path`` in one step, on failure removed."""
+def atomic_path(path, make_parents: bool = False):
+    """Yield a temporary path in ``path``'s directory to write to; on success it is renamed
+    to ``path`` in one step, on failure removed. A missing directory is an error (OSError)
+    unless ``make_parents``."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    if make_parents:
+        path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
         yield tmp

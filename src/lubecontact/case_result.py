@@ -86,7 +86,7 @@ class CaseResult:
 
         from .atomic_write import atomic_path
 
-        with atomic_path(path) as tmp, netCDF4.Dataset(tmp, "w", format="NETCDF4") as nc:
+        with atomic_path(path, make_parents=True) as tmp, netCDF4.Dataset(tmp, "w", format="NETCDF4") as nc:
             nc.setncatts({**self.attrs, "history": history_line(self.attrs.get("history"))})
             for name, value in self.scalars.items():
                 _variable(nc, name, value, (), _attrs(SCALARS, name))

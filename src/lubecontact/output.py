@@ -76,5 +76,5 @@ def write_case(dataset: xr.Dataset, path) -> None:
     from .atomic_write import atomic_path
 
     dataset, encoding = cf_ready(dataset)
-    with atomic_path(path) as tmp:
+    with atomic_path(path, make_parents=True) as tmp:
         dataset.to_netcdf(tmp, encoding=encoding)
