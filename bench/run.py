@@ -322,9 +322,8 @@ def _whole_process(args: list[str], output: bool = True) -> dict:
     t0 = time.perf_counter()
     if output:
         run = run_child(args, script=False)
-    else:
-        env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
-        subprocess.run([sys.executable, *args], stdout=subprocess.DEVNULL, env=env, cwd=ROOT, check=True)
+    else:  # the same interpreter, environment and directory as run_child's children
+        subprocess.run([sys.executable, *args], stdout=subprocess.DEVNULL, cwd=ROOT, check=True)
         run = {}
     run["process_wall_s"] = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
