@@ -47,6 +47,12 @@ MESHES = [51, 201, 401]  # default run; --quick: 51 and 201
 BIG_MESH = 401  # from this n on: max(1, repeats // 3) timed solves per speed, no tracemalloc
 SWEEP_POINTS = 26  # log-spaced speeds from 1e-3 to 10 m/s, at 51^2
 STARTUP_PROCESSES = 3  # fresh processes for the 51^2 start-up (median)
+# The transient cost guard: Table 1 at 51^2 with a 1 Pa s oil, stopped from 1 m/s over 1 ms
+# and followed for 30 s (config/transient.yaml's stop curve "mu = 1 Pa s"). No test watches
+# the transients' cost: a warm-started CG once passed the suite and the steady figures while
+# this scene went from 240 to 5800 factorisations (bench/RESULTS.md, issue 14, fifth session).
+TRANSIENT_SET = {"mesh.nx": 51, "mesh.ny": 51, "lubricant.viscosity": 1.0, "operating.speed": 1.0,
+                 "motion.kind": "stop", "motion.ramp": 1.0e-3, "motion.duration": 30.0}
 PAPER_FIGURES = [f"fig{i:02d}" for i in range(3, 12)]  # the paper's Figs. 3-11
 
 # The performance issue's targets (wall time; "point" = worst of the 4 speeds, after warm-up).
@@ -254,6 +260,23 @@ def child_sweep(rounds: int) -> dict:
             rel = np.where(a == b, 0.0, np.abs(a - b) / np.abs(b))
         worst = int(np.nanargmax(rel)) if np.any(np.isfinite(rel)) else 0
         out["max_relative_difference"][var] = {"value": float(rel[worst]), "at_speed": float(speeds[worst])}
+    return out
+
+
+def child_transient() -> dict:
+    """Run in a fresh process: the transient of TRANSIENT_SET once (no warm-up: a transient is
+    hundreds of solves), with its work: steps, coupled solves, factorisations, Reynolds solves."""
+    import lubecontact
+
+    counts = Counts().install()
+    scene = lubecontact.load_scene(SCENE, TRANSIENT_SET)
+    c0, w0 = time.process_time(), time.perf_counter()
+    ds = lubecontact.transient(scene, progress=False)
+    out = {"set": TRANSIENT_SET, "wall_s": time.perf_counter() - w0, "cpu_s": time.process_time() - c0,
+           "counts": counts.summary(), "counting": counts.missing}
+    for name in ("converged", "steps", "rejected_steps", "coupled_solves"):
+        out[name] = int(ds[name])
+    out["reconnect_time_s"] = float(ds["reconnect_time"])
     return out
 
 
@@ -550,6 +573,21 @@ def markdown(result: dict, previous: dict | None) -> str:
                       f"{var} {v['value']:.2g} (at {v['at_speed']:.3g} m/s)" for var, v in d.items())]
         lines += [f"- counting: {note}" for note in w.get("counting", [])]
 
+    if "transient" in result:
+        t = result["transient"]
+        c = t["counts"]
+        old = (previous or {}).get("transient", {})
+        was = (f" (previous run: {old['wall_s']:.1f} s, {fmt(old['counts']['lu_factorizations'], 'd')} LU)"
+               if old.get("counts") else "")
+        lines += ["", "## Transient cost guard (Table 1, 51\u00b2, 1 Pa s, stopped from 1 m/s, 30 s)", "",
+                  f"- {t['wall_s']:.1f} s wall (cpu {t['cpu_s']:.1f}){was}; converged: {'yes' if t['converged'] else 'NO'}; "
+                  f"reconnect time {t['reconnect_time_s']:.3g} s",
+                  f"- {t['steps']} steps ({t['rejected_steps']} rejected), {t['coupled_solves']} coupled solves, "
+                  f"{fmt(c['lu_factorizations'], 'd')} LU factorisations, {fmt(c['reynolds_solves'], 'd')} Reynolds solves "
+                  f"(a change of these counts is a change of the transient's path; 240 LU and 806 Reynolds solves "
+                  f"on the sixth session's code)"]
+        lines += [f"- counting: {note}" for note in t.get("counting", [])]
+
     if "figures" in result:
         f = result["figures"]
         what = {"paper": "the paper's Figs. 3-11", "full": "every target", "test": "every target"}.get(f.get("which"), "")
@@ -574,6 +612,7 @@ def main(argv=None) -> int:
     parser.add_argument("--child-mesh", type=int, help=argparse.SUPPRESS)
     parser.add_argument("--child-sweep", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--child-startup", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--child-transient", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     repeats = args.repeats or (3 if args.quick else 5)
     if args.child_mesh:
@@ -584,6 +623,9 @@ def main(argv=None) -> int:
         return 0
     if args.child_startup:
         print(json.dumps(child_startup()))
+        return 0
+    if args.child_transient:
+        print(json.dumps(child_transient()))
         return 0
 
     meshes = sorted(set(args.meshes or ([51, 201] if args.quick else MESHES)))
@@ -604,6 +646,9 @@ def main(argv=None) -> int:
     log(f"sweep against cold solves at 51x51 ({rounds} round(s)) ...")
     result["sweep"] = run_child(["--child-sweep", "--repeats", str(rounds)])
     log(f"sweep / cold: {result['sweep']['ratio_wall']:.3g}")
+    log("transient cost guard (stop, 1 Pa s, 51x51) ...")
+    result["transient"] = run_child(["--child-transient"])
+    log(f"transient: {result['transient']['wall_s']:.1f} s, {result['transient']['counts']['lu_factorizations']} LU")
     if args.figures:
         result["figures"] = time_figures(args.figures)
         log(f"figures: {result['figures']['wall_s']:.1f} s")
