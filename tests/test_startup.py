@@ -14,6 +14,9 @@ import pytest
 from lubecontact import rough_surface
 
 HEAVY = ("numba", "llvmlite", "scipy", "xarray", "pandas", "importlib.metadata")
+# planning needs importlib.metadata where a scene has a measured surface (the cache key
+# holds the surface reader's version: lubecontact.surfaces.measured)
+SOLVER_AND_DATA = ("numba", "llvmlite", "scipy", "xarray", "pandas")
 
 
 def _fresh(code: str) -> dict:
@@ -32,6 +35,33 @@ def test_import_and_load_scene_stay_light():
         "print(json.dumps({'import': first, 'load_scene': second}))\n"
     )
     assert loaded == {"import": [], "load_scene": []}
+
+
+def test_planning_the_workflow_stays_light():
+    """What the Snakefile runs at parse time (every snakemake call, and every job on a
+    cluster) to plan the figures, the transient cases and the accuracy study: no solver,
+    no xarray (they cost ~0.4 s a parse when the unsteady package and the study loaded them).
+    The measured surfaces of config/test.yaml are analysed first, here: a cold surface cache
+    needs scipy, a warm one (the session's, which the fresh process shares) does not."""
+    import yaml
+
+    from lubecontact import grid
+
+    config = yaml.safe_load(open("config/test.yaml"))
+    specs = {f: grid.figure_spec(f, "config/figures", config["figures"]) for f in config["figures"]}
+    grid.expand_all(specs)
+    loaded = _fresh(
+        "import json, sys, yaml\n"
+        "from lubecontact import grid, convergence\n"
+        "from lubecontact.unsteady import study\n"
+        "config = yaml.safe_load(open('config/test.yaml'))\n"
+        "specs = {f: grid.figure_spec(f, 'config/figures', config['figures']) for f in config['figures']}\n"
+        "grid.expand_all(specs)\n"
+        "study.figure_cases(study.study_spec('config/transient.yaml', config.get('transient')))\n"
+        "convergence.study_points(convergence.study_spec('config/accuracy.yaml', config.get('accuracy')))\n"
+        "print(json.dumps(sorted(m for m in " + repr(SOLVER_AND_DATA) + " if m in sys.modules)))\n"
+    )
+    assert loaded == []
 
 
 def test_solve_does_not_load_numba():

@@ -5,6 +5,14 @@ term in the Reynolds equation, a coupled solve per step), series.py (the Dataset
 ``time``, reconnect_time, oscillation metrics), api.py (``transient(scene)``).
 """
 
-from .api import transient
-
 __all__ = ["transient"]
+
+
+def __getattr__(name):
+    # Lazy, like the package's own __init__: the workflow plans its transient cases with
+    # study.py at parse time, which needs neither the solver (scipy) nor xarray (~0.2 s).
+    if name == "transient":
+        from .api import transient
+
+        return transient
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
