@@ -47,7 +47,8 @@ def test_planning_the_workflow_stays_light():
 
     from lubecontact import grid
 
-    config = yaml.safe_load(open("config/test.yaml"))
+    with open("config/test.yaml") as file:
+        config = yaml.safe_load(file)
     specs = {f: grid.figure_spec(f, "config/figures", config["figures"]) for f in config["figures"]}
     grid.expand_all(specs)
     loaded = _fresh(
