@@ -85,18 +85,18 @@ def _load(args):
 
 _SHOWN = ("contact_resistance", "spot_resistance", "macro_constriction_resistance", "film_resistance",
           "friction_coefficient", "contact_force", "fluid_force",
-          "min_film_thickness", "iterations", "force_residual", "solve_time", "converged")
+          "min_film_thickness", "iterations", "force_residual", "solve_time")
 
 
 def _summary(effects_run: str, values) -> str:
     """What the terminal shows of a case or a sweep; ``values[name]`` is an array (one value
-    a point) of each name in _SHOWN."""
+    a point) of each name in _SHOWN and of ``converged``."""
     import numpy as np
 
     from .output import SCALARS
 
     lines = [f"effects run: {effects_run}"]
-    for name in _SHOWN[:-1]:
+    for name in _SHOWN:
         flat = np.asarray(values[name]).ravel()
         shown = f"{flat[0]:.6g}" if flat.size == 1 else f"{flat.min():.4g} .. {flat.max():.4g}"
         lines.append(f"{name:>22s} = {shown} {SCALARS[name][0]}")
@@ -195,7 +195,7 @@ def _run(args) -> int:
 
         ds = sweep(scene, speeds)
         write, effects_run = (lambda path: write_case(ds, path)), ds.attrs["effects_run"]
-        values = {name: ds[name].values for name in _SHOWN}
+        values = {name: ds[name].values for name in (*_SHOWN, "converged")}
     try:
         write(out)
     except OSError as err:
