@@ -163,7 +163,7 @@ class Counts:
                 "seconds": {  # the only entries that differ between repeats of a point
                     "lu": sum(f[3] for f in self.factorizations),
                     "lu_finest": sum(on_finest),
-                    "lu_largest_finest": max(on_finest, default=0.0),  # the floor of a direct solve
+                    "lu_largest_finest": max(on_finest, default=None),  # the floor of a direct solve
                     "back_substitutions": sum(b[2] for b in self.back_substitutions),
                     "back_substitutions_finest": sum(b[2] for b in substitutions),
                 },
@@ -570,7 +570,7 @@ def _time_split(result: dict) -> list[str]:
                 f"| {c['lu_factorizations_finest']}, {t['lu_finest']:.3g} / {t['lu']:.3g} "
                 f"| {c['back_substitutions_finest']} ({c['back_substitution_columns_finest']}), "
                 f"{t['back_substitutions_finest']:.3g} / {c['back_substitutions']}, "
-                f"{t['back_substitutions']:.3g} | {rest:.3g} | {t['lu_largest_finest']:.3g} |")
+                f"{t['back_substitutions']:.3g} | {rest:.3g} | {fmt(t['lu_largest_finest'], '.3g')} |")
     return lines
 
 
