@@ -1,4 +1,5 @@
-# lubecontact: regenerate Figures 3-11 of Jackson & Angadi (2022), Lubricants 10, 32.
+# lubecontact: regenerate the figures of Jackson & Angadi (2022), Lubricants 10, 32, and the
+# project's own (accuracy, measured surfaces, transients).
 #
 #   snakemake --workflow-profile workflow/profiles/default                 # all figures
 #   snakemake --workflow-profile workflow/profiles/default --configfile config/test.yaml
@@ -20,6 +21,7 @@ configfile: "config/config.yaml"
 report: "workflow/report/workflow.rst"
 
 
+include: "workflow/rules/common.smk"
 include: "workflow/rules/cases.smk"
 include: "workflow/rules/solve.smk"
 include: "workflow/rules/collect.smk"

@@ -15,9 +15,10 @@ import statistics
 import time
 
 import lubecontact as lc
-from lubecontact.cavitation_jfo import solve_jfo
-from lubecontact.reynolds import solve_reynolds
-from lubecontact.solver import Model, fluid_film
+from lubecontact.model.fluid_film import fluid_film
+from lubecontact.model.model import Model
+from lubecontact.numerics.cavitation_jfo import solve_jfo
+from lubecontact.numerics.reynolds import solve_reynolds
 
 
 def _median_time(run, repeats):

@@ -29,9 +29,9 @@ from pathlib import Path
 import numpy as np
 
 import lubecontact as lc
-from lubecontact.effects import DEFAULT_TOLERANCE, EFFECTS, OPEN_CIRCUIT_RESISTANCE
-from lubecontact.grid import expand, figure_spec
-from lubecontact.solver import SolveError
+from lubecontact.model.auto_effects import DEFAULT_TOLERANCE, EFFECTS, OPEN_CIRCUIT_RESISTANCE
+from lubecontact.model.model import SolveError
+from lubecontact.studies.figure_grids import expand, figure_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE1 = ROOT / "config/scenes/table1.yaml"

@@ -10,10 +10,10 @@ import argparse
 import time
 
 import lubecontact as lc
-from lubecontact.electrical import electrical_path
-from lubecontact.mesh import build_mesh
-from lubecontact.rough_surface import RoughContact
-from lubecontact.validity import assess
+from lubecontact.model.validity import assess
+from lubecontact.numerics.mesh import build_mesh
+from lubecontact.physics.electrical import electrical_path
+from lubecontact.physics.rough_surface import RoughContact
 
 VARIANTS = {
     "paper (spots + Psi)": {},

@@ -10,7 +10,7 @@ and print the relative change of the paper's resistance and of the full path's
 import argparse
 
 import lubecontact as lc
-from lubecontact.mesh import build_mesh
+from lubecontact.numerics.mesh import build_mesh
 
 FULL = {"effects.macro_constriction": True, "effects.film_conduction": True}
 

@@ -17,8 +17,8 @@ Each mesh runs in its own Python process, so its peak resident memory (getrusage
 own: a warm-up solve first (imports, FFT plans), then ``repeats`` timed solves
 per speed (fewer on meshes of 401^2 and more), each from a cold start as the workflow solves
 its cases; the median is reported. In that process the LU factorisations and Reynolds solves
-of each point are counted by wrapping ``lubecontact.reynolds._factorize`` and
-``lubecontact.reynolds.solve_reynolds``.
+of each point are counted by wrapping ``lubecontact.numerics.linear_algebra.factorize`` and
+``lubecontact.numerics.reynolds.solve_reynolds``.
 """
 
 from __future__ import annotations
@@ -78,17 +78,17 @@ def mesh_repeats(n: int, repeats: int) -> int:
 
 class Counts:
     """LU factorisations and Reynolds solves, counted by wrapping the module functions
-    ``lubecontact.reynolds._factorize`` (one call = one SuperLU factorisation) and
-    ``lubecontact.reynolds.solve_reynolds`` (its mesh tells the level). The solver looks both
-    up on the module at call time, so replacing the attributes reaches every call. A
-    function that is not there is not counted: its counts are None and ``missing`` says why.
+    ``lubecontact.numerics.linear_algebra.factorize`` (one call = one SuperLU factorisation)
+    and ``lubecontact.numerics.reynolds.solve_reynolds`` (its mesh tells the level) in every
+    module that holds them, so the wrappers reach every call. A function that is not there
+    is not counted: its counts are None and ``missing`` says why.
 
     The factorisations are also timed, and so is every back-substitution with their factors
     (the factors are handed out behind ``_TimedFactors``): where a point's time goes, and
     the floor of a direct solve, one factorisation of the finest mesh's pressurised block.
     """
 
-    WRAPPED = ("_factorize", "solve_reynolds")
+    WRAPPED = ("factorize", "solve_reynolds")
 
     def __init__(self):
         self.wrapped = dict.fromkeys(self.WRAPPED, False)
@@ -103,18 +103,25 @@ class Counts:
         self.last_level: int | None = None  # nodes of the last solve_reynolds that returned
 
     def install(self) -> Counts:
+        """Wrap the two functions wherever the package holds them: their own modules and
+        every module that imported them by name (the solver's modules import at the top)."""
         try:
-            from lubecontact import reynolds
+            from lubecontact.model import solve  # noqa: F401  (loads every solver module)
+            from lubecontact.numerics import linear_algebra, reynolds
         except ImportError as error:
-            self.missing.append(f"lubecontact.reynolds cannot be imported ({error}): nothing counted")
+            self.missing.append(f"the solver cannot be imported ({error}): nothing counted")
             return self
-        for name, wrap in (("_factorize", self._wrap_factorize), ("solve_reynolds", self._wrap_solve)):
-            original = getattr(reynolds, name, None)
-            if callable(original):
-                setattr(reynolds, name, wrap(original))
-                self.wrapped[name] = True
-            else:
-                self.missing.append(f"lubecontact.reynolds.{name} does not exist: not counted")
+        for home, name, wrap in ((linear_algebra, "factorize", self._wrap_factorize),
+                                 (reynolds, "solve_reynolds", self._wrap_solve)):
+            original = getattr(home, name, None)
+            if not callable(original):
+                self.missing.append(f"{home.__name__}.{name} does not exist: not counted")
+                continue
+            wrapped = wrap(original)
+            for module in [m for n, m in sys.modules.items() if n.startswith("lubecontact.")]:
+                if getattr(module, name, None) is original:
+                    setattr(module, name, wrapped)
+            self.wrapped[name] = True
         return self
 
     def _wrap_factorize(self, original):
@@ -150,7 +157,7 @@ class Counts:
         return solve_reynolds
 
     def summary(self) -> dict:
-        lu, rs = self.wrapped["_factorize"], self.wrapped["solve_reynolds"]
+        lu, rs = self.wrapped["factorize"], self.wrapped["solve_reynolds"]
         finest = max((n for n in self.solves if n is not None), default=None) if rs else None
         timed = {}
         if lu and rs:
@@ -181,7 +188,7 @@ class Counts:
 
 
 class _TimedFactors:
-    """LU factors as ``_factorize`` returned them, with each ``solve`` (a back-substitution,
+    """LU factors as ``factorize`` returned them, with each ``solve`` (a back-substitution,
     one column or several) timed into ``log`` as (level of the factorisation, columns, s)."""
 
     def __init__(self, factors, level, log):
@@ -210,7 +217,7 @@ def child_mesh(n: int, repeats: int) -> dict:
     import tracemalloc
 
     import lubecontact
-    from lubecontact.mesh import build_mesh
+    from lubecontact.numerics.mesh import build_mesh
 
     counts = Counts().install()
     scene = lubecontact.load_scene(SCENE, {"mesh.nx": n, "mesh.ny": n})
@@ -375,7 +382,7 @@ def startup_cli() -> dict:
     solve job does: import, solve, write the case with netCDF4, no xarray), median of each
     whole process seen from here."""
     with tempfile.TemporaryDirectory() as tmp:
-        cmd = ["-m", "lubecontact.cli", "solve", str(SCENE), "--set", "mesh.nx=51", "--set", "mesh.ny=51",
+        cmd = ["-m", "lubecontact.cli.main", "solve", str(SCENE), "--set", "mesh.nx=51", "--set", "mesh.ny=51",
                "--out", str(Path(tmp) / "case.nc")]
         runs = [_whole_process(cmd, output=False) for _ in range(STARTUP_PROCESSES)]
     out = {key: statistics.median(r[key] for r in runs) for key in runs[0]}

@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 import lubecontact as lc
-from lubecontact.scene import parse_override
+from lubecontact.scene.scene import parse_override
 
 COLUMNS = ("contact_resistance", "friction_coefficient", "fluid_load_fraction", "min_film_thickness", "converged")
 

@@ -7,7 +7,7 @@ from decimal import Decimal
 import numpy as np
 import pytest
 
-from lubecontact.asperity import Asperity, hardness_ratio, jg_constant
+from lubecontact.physics.asperity import Asperity, hardness_ratio, jg_constant
 
 pytestmark = pytest.mark.filterwarnings("error")
 

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from lubecontact.output import write_case
-from lubecontact.scene import load_scene
-from lubecontact.solver import solve, solve_case
+from lubecontact.io.case_schema import write_case
+from lubecontact.model.solve import solve, solve_case
+from lubecontact.scene.scene import load_scene
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 ENCODING_KEYS = ("dtype", "_FillValue", "zlib", "shuffle", "contiguous", "chunksizes")
@@ -57,7 +57,7 @@ def test_scalars_only_case_and_the_public_dataset(tmp_path):
 
 
 def test_missing_output_is_refused():
-    from lubecontact.case_result import CaseResult
+    from lubecontact.io.case_result import CaseResult
 
     with pytest.raises(KeyError, match="lacks"):
         CaseResult.build(load_scene({}), {"speed": 1.0}, None, None, {}, "", "ok")
@@ -66,8 +66,8 @@ def test_missing_output_is_refused():
 def test_a_solve_job_and_the_cli_never_import_xarray(tmp_path):
     code = (
         "import sys, lubecontact\n"
-        "from lubecontact.solver import solve_case\n"
-        "from lubecontact.cli import main\n"
+        "from lubecontact.model.solve import solve_case\n"
+        "from lubecontact.cli.main import main\n"
         f"r, _ = solve_case(lubecontact.load_scene({{}}, {{'mesh.nx': 15, 'mesh.ny': 1}}))\n"
         f"r.write({str(tmp_path / 'a.nc')!r})\n"
         f"main(['solve', '--set', 'mesh.nx=15', '--set', 'mesh.ny=1', '--out', {str(tmp_path / 'b.nc')!r}, "

@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 
 import lubecontact as lc
-from lubecontact.cavitation_jfo import solve_jfo
-from lubecontact.mesh import Mesh
-from lubecontact.reynolds import solve_reynolds
+from lubecontact.numerics.cavitation_jfo import solve_jfo
+from lubecontact.numerics.mesh import Mesh
+from lubecontact.numerics.reynolds import solve_reynolds
 
 pytestmark = pytest.mark.filterwarnings("error")
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from cfcheck import cf_findings
 
-from lubecontact import cli
+from lubecontact.cli import main as cli
 
 SCENE = str(Path(__file__).resolve().parents[1] / "config" / "scenes" / "table1.yaml")
 COARSE = ["--set", "mesh.nx=15", "--set", "mesh.ny=11"]

@@ -10,8 +10,9 @@ from pathlib import Path
 import pytest
 import xarray as xr
 
-from lubecontact import cli, resources
-from lubecontact.outpath import OutputPathError, check_output_path
+from lubecontact.cli import main as cli
+from lubecontact.io.output_path import OutputPathError, check_output_path
+from lubecontact.model import resources
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = str(ROOT / "config" / "scenes" / "table1.yaml")
@@ -21,15 +22,15 @@ TINY = ["--set", "mesh.nx=15", "--set", "mesh.ny=1"]
 @pytest.fixture
 def no_solve(monkeypatch):
     """Fail the test if anything is solved (refusals must come first)."""
-    import lubecontact.solver
-    import lubecontact.speed_sweep
+    import lubecontact.model.solve
+    import lubecontact.studies.sweep
 
     def forbidden(*args, **kwargs):
         raise AssertionError("solved before refusing")
 
-    monkeypatch.setattr(lubecontact.solver, "solve", forbidden)
-    monkeypatch.setattr(lubecontact.solver, "solve_case", forbidden)
-    monkeypatch.setattr(lubecontact.speed_sweep, "sweep", forbidden)
+    monkeypatch.setattr(lubecontact.model.solve, "solve", forbidden)
+    monkeypatch.setattr(lubecontact.model.solve, "solve_case", forbidden)
+    monkeypatch.setattr(lubecontact.studies.sweep, "sweep", forbidden)
 
 
 def run(capsys, *argv):
@@ -153,7 +154,7 @@ def test_size_estimate_refuses_beyond_memory_with_an_override(tmp_path, capsys, 
 
 def test_estimate_matches_the_measured_points():
     """The laws against the measurements they summarise (resources.py docstring)."""
-    from lubecontact.scene import load_scene
+    from lubecontact.scene.scene import load_scene
 
     def est(n):
         return resources.estimate(load_scene({}, {"mesh.nx": n, "mesh.ny": n}))
@@ -166,12 +167,12 @@ def test_estimate_matches_the_measured_points():
 
 
 def test_internal_error_is_one_line_with_a_saved_traceback(tmp_path, capsys, monkeypatch):
-    import lubecontact.solver
+    import lubecontact.model.solve
 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("simulated bug")
 
-    monkeypatch.setattr(lubecontact.solver, "solve_case", broken)
+    monkeypatch.setattr(lubecontact.model.solve, "solve_case", broken)
     monkeypatch.setenv("TMPDIR", str(tmp_path))
     import tempfile
 
@@ -187,13 +188,13 @@ def test_internal_error_is_one_line_with_a_saved_traceback(tmp_path, capsys, mon
 def test_interrupt_and_a_failed_write_are_one_line_each(tmp_path, capsys, monkeypatch):
     import errno
 
-    import lubecontact.case_result
-    import lubecontact.solver
+    import lubecontact.io.case_result
+    import lubecontact.model.solve
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(lubecontact.solver, "solve_case", interrupted)
+    monkeypatch.setattr(lubecontact.model.solve, "solve_case", interrupted)
     code, _, err = run(capsys, "solve", SCENE, *TINY, "--out", str(tmp_path / "x.nc"))
     assert code == cli.EXIT_INTERRUPTED and err == "lubecontact: interrupted; nothing was written\n"
     monkeypatch.undo()
@@ -201,7 +202,7 @@ def test_interrupt_and_a_failed_write_are_one_line_each(tmp_path, capsys, monkey
     def disk_full(*args, **kwargs):
         raise OSError(errno.ENOSPC, "No space left on device")
 
-    monkeypatch.setattr(lubecontact.case_result.CaseResult, "write", disk_full)
+    monkeypatch.setattr(lubecontact.io.case_result.CaseResult, "write", disk_full)
     code, _, err = run(capsys, "solve", SCENE, *TINY, "--out", str(tmp_path / "x.nc"))
     assert code == cli.EXIT_NOT_CONVERGED and err.count("\n") == 1 and "No space left on device" in err
     assert not (tmp_path / "x.nc").exists()

@@ -1,4 +1,4 @@
-"""Mesh convergence (lubecontact.convergence) against closed forms, and the solver's Newton
+"""Mesh convergence (lubecontact.studies.accuracy) against closed forms, and the solver's Newton
 machinery (force gradient) against finite differences."""
 
 import math
@@ -7,7 +7,9 @@ import numpy as np
 import pytest
 
 import lubecontact as lc
-from lubecontact import convergence as cv
+from lubecontact.plotting.accuracy import plot_accuracy_cost
+from lubecontact.studies import accuracy as cv
+from lubecontact.studies import accuracy_plan
 
 TABLE1 = "config/scenes/table1.yaml"
 
@@ -90,7 +92,7 @@ def test_table1_resistance_converges_under_mesh_refinement():
 
 
 def test_study_pipeline_on_tiny_meshes(tmp_path):
-    spec = cv.study_spec(TABLE1.replace("scenes/table1.yaml", "accuracy.yaml"), {
+    spec = accuracy_plan.study_spec(TABLE1.replace("scenes/table1.yaml", "accuracy.yaml"), {
         "speeds": [1.0], "meshes": [11, 15, 21], "timing": {"repeats": 1},
         "domain": {"mesh": 11, "scales": [1.0, 1.5]}, "tolerance": {"mesh": 11, "values": [1e-4, 1e-7]},
     })
@@ -106,16 +108,16 @@ def test_study_pipeline_on_tiny_meshes(tmp_path):
     text = cv.markdown(table, spec["targets"])
     assert "| 21 \u00d7 21 | 693 | -2.06 |" in text and "Cheapest square mesh" in text  # 21 + 12 inlet columns at 1 m/s
     assert np.all(table["x_min"].values < 0) and table["x_min"].attrs["units"] == "m"
-    fig = cv.plot_accuracy_cost(table)
+    fig = plot_accuracy_cost(table)
     assert [ax.get_xlabel() for ax in fig.axes] == ["solve time (s)"] * 3
 
 
 def test_study_spec_rejects_unknown_keys_and_short_ladders():
     path = TABLE1.replace("scenes/table1.yaml", "accuracy.yaml")
     with pytest.raises(ValueError, match="unknown keys"):
-        cv.study_spec(path, {"mehses": [11, 15, 21]})
+        accuracy_plan.study_spec(path, {"mehses": [11, 15, 21]})
     with pytest.raises(ValueError, match="three different"):
-        cv.study_spec(path, {"meshes": [11, 21]})
+        accuracy_plan.study_spec(path, {"meshes": [11, 21]})
 
 
 @pytest.mark.parametrize("speed", [0.1, 10.0])
@@ -123,16 +125,17 @@ def test_force_gradient_matches_finite_differences(speed):
     # the Newton force balance uses dF/dh_j from the Reynolds adjoint plus the contact
     # slope; check it against central differences of the full evaluation (Reynolds solve
     # with cavitation included) for a uniform shift (dF/dz) and for the most sensitive node
-    from lubecontact import solver
+    from lubecontact.model.evaluation import evaluate, force_gradient
+    from lubecontact.model.model import Model
 
     scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 15, "operating.speed": speed})
     _, state = lc.solve(scene, return_state=True)
-    model = solver.Model.assemble(scene)
-    gradient = solver.force_gradient(model, solver.evaluate(model, state.z, state.delta))
+    model = Model.assemble(scene)
+    gradient = force_gradient(model, evaluate(model, state.z, state.delta))
     step = 1e-4 * model.contact.sigma
 
     def force(shift):
-        return solver.evaluate(model, state.z, state.delta + shift).total_force
+        return evaluate(model, state.z, state.delta + shift).total_force
 
     uniform = (force(step) - force(-step)) / (2 * step)
     assert gradient.sum() == pytest.approx(uniform, rel=1e-4)
@@ -149,7 +152,7 @@ def test_domain_study_stays_inside_the_cylinder():
     on the 3x domain before)."""
     import lubecontact as lc
 
-    spec = cv.study_spec(TABLE1.replace("scenes/table1.yaml", "accuracy.yaml"), {"speeds": [0.1, 10.0]})
+    spec = accuracy_plan.study_spec(TABLE1.replace("scenes/table1.yaml", "accuracy.yaml"), {"speeds": [0.1, 10.0]})
     radius = lc.load_scene(TABLE1).geometry.radius
     base = lc.load_scene(TABLE1)
     points = [p for p in cv.study_points(spec) if p["part"] == "domain"]

@@ -10,8 +10,12 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from lubecontact.deformation import ElasticDeformation, love_rectangle, plane_strain_strip
-from lubecontact.mesh import Mesh
+from lubecontact.numerics.mesh import Mesh
+from lubecontact.physics.deformation import (
+    ElasticDeformation,
+    love_rectangle,
+    plane_strain_strip,
+)
 
 E_STAR = 23.78e9  # Pa, Table 1 tin on tin (Eq. 19)
 LOAD_PER_LENGTH = 5000.0  # N/m, 5 N on L = 1 mm

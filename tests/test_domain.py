@@ -4,7 +4,13 @@ further moves the resistance by < 1 %, at 1 and 10 m/s, where main's fixed inlet
 import pytest
 
 import lubecontact as lc
-from lubecontact.mesh import UPSTREAM_LENGTHS, auto_length_scale, build_mesh, domain_x, nodes_x
+from lubecontact.numerics.mesh import (
+    UPSTREAM_LENGTHS,
+    auto_length_scale,
+    build_mesh,
+    domain_x,
+    nodes_x,
+)
 
 TABLE1 = "config/scenes/table1.yaml"
 FULL = {"effects.macro_constriction": True, "effects.film_conduction": True}

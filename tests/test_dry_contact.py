@@ -77,7 +77,7 @@ def test_rigid_dry_contact_equals_the_rough_law_without_deformation():
 
 
 def test_cli_solve_writes_a_converged_dry_case(tmp_path):
-    from lubecontact.cli import main
+    from lubecontact.cli.main import main
 
     out = tmp_path / "x.nc"
     code = main(["solve", TABLE1, "--set", "effects.hydrodynamics=false", "--fields", "--out", str(out)])
@@ -93,7 +93,7 @@ def test_cli_solve_writes_a_converged_dry_case(tmp_path):
 
 
 def test_cli_bad_input_exits_2_and_writes_nothing(tmp_path, capsys):
-    from lubecontact.cli import main
+    from lubecontact.cli.main import main
 
     out = tmp_path / "x.nc"
     code = main(["solve", TABLE1, "--set", "roughness.sigma=-1e-6", "--out", str(out)])

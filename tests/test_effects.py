@@ -5,7 +5,7 @@
 2. Each reduced model equals its physical limit: elastic Greenwood-Williamson (closed form
    through F_n), dry contact = zero speed, rigid film = undeformed gap + z, phi = 1,
    full Sommerfeld (independent 1D quadrature), alleviation's exact factor.
-3. ``effects: auto`` (lubecontact.effects): its estimates against Martin, Hamrock and the
+3. ``effects: auto`` (lubecontact.model.auto_effects): its estimates against Martin, Hamrock and the
    full model, and auto against full solves within the tolerance.
 """
 
@@ -17,10 +17,15 @@ from scipy.integrate import cumulative_trapezoid
 from scipy.interpolate import CubicSpline
 
 import lubecontact as lc
-from lubecontact import effects
-from lubecontact.effects import OPEN_CIRCUIT_RESISTANCE, auto_effects, resolve_auto_effects
-from lubecontact.materials import effective_modulus
-from lubecontact.rough_surface import gaussian_moment
+from lubecontact.model import auto_effects as effects
+from lubecontact.model.auto_effects import (
+    OPEN_CIRCUIT_RESISTANCE,
+    auto_effects,
+    resolve_auto_effects,
+)
+from lubecontact.physics import film_estimates
+from lubecontact.physics.materials import effective_modulus
+from lubecontact.physics.rough_surface import gaussian_moment
 
 TABLE1 = "config/scenes/table1.yaml"
 COARSE = {"mesh.nx": 21, "mesh.ny": 11}
@@ -44,17 +49,17 @@ def ran(ds) -> set:
 
 # (effect, patched attribute, a scene with the effect on that reaches that code)
 ENTRY_POINTS = [
-    ("asperity_contact", "lubecontact.effects.contact_table",
+    ("asperity_contact", "lubecontact.model.model.contact_table",
      {"operating.speed": 10.0, "roughness.sigma": 0.25e-6}),
-    ("elastic_deformation", "lubecontact.deformation.ElasticDeformation", {"operating.speed": 0.1}),
-    ("hydrodynamics", "lubecontact.reynolds.solve_reynolds", {"operating.speed": 0.1}),
-    ("flow_factors", "lubecontact.flow_factors.pressure_flow_factor", {"operating.speed": 0.1}),
-    ("cavitation", "lubecontact.reynolds._active_set", {"operating.speed": 0.1}),
-    ("plasticity", "lubecontact.asperity.hardness_ratio", {"operating.speed": 0.1}),
-    ("alleviation", "lubecontact.electrical.spots.alleviation_factor", {"operating.speed": 0.1}),
-    ("macro_constriction", "lubecontact.electrical.cluster.ClusterOperator", {"effects.macro_constriction": True}),
-    ("film_conduction", "lubecontact.electrical.film.film_log_conductance", {"effects.film_conduction": True}),
-    ("tunnelling", "lubecontact.electrical.film.simmons_log_specific_conductance", {"effects.tunnelling": True}),
+    ("elastic_deformation", "lubecontact.model.model.ElasticDeformation", {"operating.speed": 0.1}),
+    ("hydrodynamics", "lubecontact.model.evaluation.solve_reynolds", {"operating.speed": 0.1}),
+    ("flow_factors", "lubecontact.physics.flow_factors.pressure_flow_factor", {"operating.speed": 0.1}),
+    ("cavitation", "lubecontact.numerics.reynolds._active_set", {"operating.speed": 0.1}),
+    ("plasticity", "lubecontact.physics.asperity.hardness_ratio", {"operating.speed": 0.1}),
+    ("alleviation", "lubecontact.physics.electrical.spots.alleviation_factor", {"operating.speed": 0.1}),
+    ("macro_constriction", "lubecontact.physics.electrical.path.ClusterOperator", {"effects.macro_constriction": True}),
+    ("film_conduction", "lubecontact.physics.electrical.path.film_log_conductance", {"effects.film_conduction": True}),
+    ("tunnelling", "lubecontact.physics.electrical.film.simmons_log_specific_conductance", {"effects.tunnelling": True}),
 ]
 
 
@@ -62,7 +67,7 @@ ENTRY_POINTS = [
 def test_a_disabled_effect_never_runs(monkeypatch, effect, target, setting):
     on = scene(**setting)
     off = on.replace({f"effects.{effect}": False})
-    monkeypatch.setattr("lubecontact.effects._MEMO", {})  # no table cached by an earlier test
+    monkeypatch.setattr("lubecontact.model.contact_tables._MEMO", {})  # no table cached by an earlier test
     monkeypatch.setattr(target, boom)
     with pytest.raises(AssertionError, match="disabled effect ran"):  # the patch does reach the effect
         lc.solve(on)
@@ -72,7 +77,7 @@ def test_a_disabled_effect_never_runs(monkeypatch, effect, target, setting):
 
 
 def test_zero_speed_never_solves_reynolds(monkeypatch):
-    monkeypatch.setattr("lubecontact.reynolds.solve_reynolds", boom)
+    monkeypatch.setattr("lubecontact.model.evaluation.solve_reynolds", boom)
     ds = lc.solve(scene(**{"operating.speed": 0.0}))
     assert ds["converged"].item() == 1
     assert ran(ds) == {"asperity_contact", "plasticity", "elastic_deformation", "alleviation"}
@@ -125,8 +130,8 @@ def test_flow_factors_off_is_phi_equal_one(monkeypatch):
     off = lc.solve(scene(**{"effects.flow_factors": False, "operating.speed": 0.1}))
     with_phi = lc.solve(scene(**{"operating.speed": 0.1}))
     assert with_phi["contact_resistance"].item() != pytest.approx(off["contact_resistance"].item(), rel=1e-3)
-    monkeypatch.setattr("lubecontact.flow_factors.pressure_flow_factor", lambda h: np.ones_like(np.asarray(h, float)))
-    monkeypatch.setattr("lubecontact.flow_factors.pressure_flow_factor_slope", lambda h: np.zeros_like(np.asarray(h, float)))
+    monkeypatch.setattr("lubecontact.physics.flow_factors.pressure_flow_factor", lambda h: np.ones_like(np.asarray(h, float)))
+    monkeypatch.setattr("lubecontact.physics.flow_factors.pressure_flow_factor_slope", lambda h: np.zeros_like(np.asarray(h, float)))
     unit_phi = lc.solve(scene(**{"operating.speed": 0.1}))
     for name in SCALARS:
         assert off[name].item() == pytest.approx(unit_phi[name].item(), rel=1e-9)
@@ -138,8 +143,11 @@ def test_cavitation_off_gives_the_full_sommerfeld_pressure():
     # Truth: 1D Reynolds integrated by quadrature, p = int (U h_T/2 - q)/k dx with p = 0 at
     # both ends (no cavitation), on the solve's film through the Patir-Cheng gap and k
     # (down to percolation: flow_factors.percolating_coefficient_and_slope).
-    from lubecontact.flow_factors import expected_gap, percolating_coefficient_and_slope
-    from lubecontact.solver import FLUID_FILM_FLOOR_SIGMAS
+    from lubecontact.model.fluid_film import FLUID_FILM_FLOOR_SIGMAS
+    from lubecontact.physics.flow_factors import (
+        expected_gap,
+        percolating_coefficient_and_slope,
+    )
 
     half = 3e-4
     s = scene(**{"effects.cavitation": False, "effects.elastic_deformation": False, "operating.speed": 0.1,
@@ -167,7 +175,7 @@ def test_cavitation_off_gives_the_full_sommerfeld_pressure():
 def test_alleviation_off_raises_the_resistance_by_the_exact_factor():
     # Same mechanics either way; R_off / R_on = sum(g dA / Psi) / sum(g dA) (Eqs. 15-17) with
     # Psi = (1 - sqrt(min(A_r/A_n, 0.99)))^1.5 and trapezoidal nodal areas, built here.
-    from lubecontact.rough_surface import RoughContact
+    from lubecontact.physics.rough_surface import RoughContact
 
     s = scene(**{"operating.speed": 0.01})
     on = lc.solve(s, fields=True)
@@ -197,7 +205,7 @@ def test_reynolds_line_load_reproduces_martin():
     inlet = math.sqrt(2 * radius * h0)
     x = inlet * np.tan(np.linspace(math.atan(-60.0), math.atan(5.0), 4001))
     h = h0 + x**2 / (2 * radius)
-    w = effects.reynolds_line_load(x, h, h**3 / (12 * mu), speed)
+    w = film_estimates.reynolds_line_load(x, h, h**3 / (12 * mu), speed)
     assert w * h0 / (mu * 0.5 * speed * radius) == pytest.approx(4.895, rel=2e-3)
 
 
@@ -205,15 +213,15 @@ def test_film_estimates_follow_martin_and_hamrock():
     mu, speed, radius, length, force = 0.1, 10.0, 0.01, 1e-3, 5.0
     s = scene(**{"operating.speed": speed, "effects.asperity_contact": False, "mesh.ny": 1, "mesh.nx": 101,
                  "mesh.x_min": -9e-3, "mesh.x_max": 2e-3})
-    assert effects.martin_film(s) == pytest.approx(4.9 * mu * 0.5 * speed * radius * length / force, rel=1e-12)
-    assert effects.film_estimate(s) == pytest.approx(effects.martin_film(s) * 4.895 / 4.9, rel=0.01)
+    assert film_estimates.martin_film(s) == pytest.approx(4.9 * mu * 0.5 * speed * radius * length / force, rel=1e-12)
+    assert effects.film_estimate(s) == pytest.approx(film_estimates.martin_film(s) * 4.895 / 4.9, rel=0.01)
     # finite cylinder: 1/F = h/(4.895 mu u_m R L) + 4 h^2/(mu U L^3) (Martin and Ocvirk's short bearing)
     a, b = 4.0 * force / (mu * speed * length**3), force / (4.895 * mu * 0.5 * speed * radius * length)
     short = (-b + math.sqrt(b * b + 4.0 * a)) / (2.0 * a)
     assert effects.film_estimate(s.replace({"mesh.ny": 11})) == pytest.approx(short, rel=0.01)
     for g in (20.0, 50.0, 200.0):  # physics.md 5: H_min -> 3.10 g_E^0.8 (within 2 % for g_E >= 20)
-        assert effects.elastic_film_factor(g) * 4.9 == pytest.approx(3.10 * g**0.8, rel=0.02)
-    assert effects.elastic_film_factor(0.01) == pytest.approx(1.0, abs=0.015)
+        assert film_estimates.elastic_film_factor(g) * 4.9 == pytest.approx(3.10 * g**0.8, rel=0.02)
+    assert film_estimates.elastic_film_factor(0.01) == pytest.approx(1.0, abs=0.015)
     point = effects.operating_point(s)  # physics.md 9: g_E = 0.324 at 10 m/s for Table 1
     assert point.elasticity == pytest.approx(0.324, rel=0.01)
 

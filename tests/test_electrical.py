@@ -7,8 +7,12 @@ import numpy as np
 import pytest
 
 import lubecontact
-from lubecontact.electrical import MAX_AREA_FRACTION, alleviation_factor, contact_resistance
-from lubecontact.materials import spot_conductance_factor
+from lubecontact.physics.electrical import (
+    MAX_AREA_FRACTION,
+    alleviation_factor,
+    contact_resistance,
+)
+from lubecontact.physics.materials import spot_conductance_factor
 
 pytestmark = pytest.mark.filterwarnings("error")
 
@@ -95,7 +99,7 @@ def test_nan_and_bad_areas_rejected():
 def test_resistance_from_rough_contact_monotone_in_separation():
     """End to end with the Table 1 scene: R rises monotonically as the surfaces separate,
     finite while representable, then +inf."""
-    from lubecontact.rough_surface import RoughContact
+    from lubecontact.physics.rough_surface import RoughContact
 
     scene = lubecontact.load_scene({})
     contact = RoughContact.from_scene(scene)

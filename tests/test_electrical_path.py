@@ -9,11 +9,18 @@ import pytest
 from scipy import constants
 
 import lubecontact as lc
-from lubecontact.cli import main
-from lubecontact.electrical import electrical_path, spots
-from lubecontact.electrical.cluster import ClusterOperator, cell_pair_integral, macro_constriction_resistance
-from lubecontact.electrical.film import film_log_conductance, simmons_specific_resistance
-from lubecontact.mesh import Mesh
+from lubecontact.cli.main import main
+from lubecontact.numerics.mesh import Mesh, build_mesh
+from lubecontact.physics.electrical import electrical_path, spots
+from lubecontact.physics.electrical.cluster import (
+    ClusterOperator,
+    cell_pair_integral,
+    macro_constriction_resistance,
+)
+from lubecontact.physics.electrical.film import (
+    film_log_conductance,
+    simmons_specific_resistance,
+)
 
 pytestmark = pytest.mark.filterwarnings("error")
 
@@ -124,7 +131,7 @@ def test_simmons_one_point():
 def test_uniform_film_conductance():
     """A smooth uniform film of thickness t over the whole domain: R_film = rho_f t / A."""
     scene = lc.load_scene(TABLE1, {"mesh.nx": 21, "mesh.ny": 11, "effects.film_conduction": True})
-    mesh = lc.mesh.build_mesh(scene)
+    mesh = build_mesh(scene)
     t = 2e-6
     path = electrical_path(scene, mesh, None, np.full(mesh.shape, t))
     area = float(mesh.nodal_area.sum())
@@ -158,7 +165,7 @@ PAPER_VALUES = [
 
 @pytest.mark.parametrize("overrides, before", PAPER_VALUES)
 def test_paper_model_unchanged(overrides, before):
-    from lubecontact.mesh import UPSTREAM_LENGTHS, auto_length_scale
+    from lubecontact.numerics.mesh import UPSTREAM_LENGTHS, auto_length_scale
 
     scene = lc.load_scene(TABLE1, overrides)
     ds = lc.solve(scene.replace({"mesh.x_min": -UPSTREAM_LENGTHS * auto_length_scale(scene)}))

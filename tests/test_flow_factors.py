@@ -9,7 +9,11 @@ import pytest
 from scipy.integrate import quad
 from scipy.stats import norm
 
-from lubecontact.flow_factors import expected_gap, poiseuille_coefficient, pressure_flow_factor
+from lubecontact.physics.flow_factors import (
+    expected_gap,
+    poiseuille_coefficient,
+    pressure_flow_factor,
+)
 
 pytestmark = pytest.mark.filterwarnings("error")
 
@@ -115,7 +119,10 @@ def test_extreme_interference_stays_finite():
 
 @pytest.mark.parametrize("flow_factors", [True, False])
 def test_analytic_slopes_match_central_differences(flow_factors):
-    from lubecontact.flow_factors import expected_gap_slope, poiseuille_coefficient_and_slope
+    from lubecontact.physics.flow_factors import (
+        expected_gap_slope,
+        poiseuille_coefficient_and_slope,
+    )
 
     H = np.array([-6.0, -1.0, 0.0, 0.3, 0.49, 0.51, 1.0, 3.0, 12.0])
     step = 1e-6 * SIGMA

@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 import lubecontact as lc
-from lubecontact.materials import effective_modulus
+from lubecontact.physics.materials import effective_modulus
 
 SCENES = Path("config/scenes")
 GALLERY = sorted(p.stem for p in SCENES.glob("*.yaml") if p.stem != "table1")
@@ -91,7 +91,7 @@ def test_auto_scene_records_its_decisions(solved):
 
 
 def test_cli_prints_the_effects_that_ran(tmp_path, capsys):
-    from lubecontact.cli import main
+    from lubecontact.cli.main import main
 
     out = tmp_path / "case.nc"
     code = main(["solve", str(SCENES / "dry_static.yaml"), "--set", "mesh.nx=41", "--set", "mesh.ny=11", "--out", str(out)])

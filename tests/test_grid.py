@@ -1,4 +1,4 @@
-"""Figure grids -> cases -> chunks -> collected Dataset (lubecontact.grid).
+"""Figure grids -> cases -> chunks -> collected Dataset (lubecontact.studies.figure_grids).
 
 Truths used: scene hashes computed independently with ``load_scene`` and the dotted
 overrides; hand-counted grid sizes; the import graph of a hand-written package; values
@@ -13,9 +13,11 @@ import pytest
 import xarray as xr
 import yaml
 
-from lubecontact import grid, load_scene
-from lubecontact.casefiles import CaseRecord
-from lubecontact.mesh import build_mesh
+from lubecontact import load_scene
+from lubecontact.io.case_files import CaseRecord
+from lubecontact.numerics.mesh import build_mesh
+from lubecontact.studies import figure_grids as grid
+from lubecontact.studies.collect import collect
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE1 = ROOT / "config" / "scenes" / "table1.yaml"
@@ -208,19 +210,23 @@ def test_solver_sources_follow_imports_of_a_known_package(tmp_path):
     (pkg / "sub").mkdir()
     for name, text in files.items():
         (pkg / name).write_text(text)
-    found = {str(p.relative_to(pkg)) for p in grid.solver_sources(pkg)}
+    found = {str(p.relative_to(pkg)) for p in grid.solver_sources(pkg, ("solver", "scene"))}
     assert found == {"__init__.py", "solver.py", "scene.py", "a.py", "b.py", "c.py", "d.py", "e.py", "mesh.py",
                      "f.py", "sub/__init__.py", "sub/one.py", "sub/two.py"}
 
 
 def test_solver_sources_of_this_package_exclude_drawing_and_driving_code():
-    found = {p.name for p in grid.solver_sources(ROOT / "src" / "lubecontact")}
-    assert {"__init__.py", "solver.py", "scene.py", "reynolds.py", "deformation.py", "output.py"} <= found
-    assert not {"plotting.py", "grid.py", "cli.py"} & found
-    assert not [name for name in found if "sweep" in name]
-    surfaces = {p.name for p in grid.solver_sources(ROOT / "src" / "lubecontact") if p.parent.name == "surfaces"}
-    assert {"__init__.py", "measured.py", "moments.py", "mccool.py", "reading.py"} <= surfaces  # roughness.surface
-    assert not {"figure.py", "report.py", "synthetic.py"} & surfaces  # drawing, CLI and test helpers
+    package = ROOT / "src" / "lubecontact"
+    found = {str(p.relative_to(package)) for p in grid.solver_sources(package)}
+    assert {"__init__.py", "model/solve.py", "scene/scene.py", "numerics/reynolds.py", "physics/deformation.py",
+            "io/case_schema.py"} <= found
+    assert not [name for name in found if name.startswith(("plotting/", "cli/", "studies/", "unsteady/"))]
+    assert {"surfaces/__init__.py", "surfaces/measured.py", "surfaces/moments.py", "surfaces/mccool.py",
+            "surfaces/reading.py"} <= found  # roughness.surface
+    assert not {"surfaces/report.py", "surfaces/synthetic.py"} & found  # CLI and test helpers
+    transient = {str(p.relative_to(package)) for p in grid.solver_sources(package, grid.TRANSIENT_ROOTS)}
+    assert {"unsteady/transient.py", "unsteady/integrator.py", "model/coupling.py"} <= transient
+    assert not [name for name in transient if name.startswith(("plotting/", "cli/", "studies/"))]
 
 
 def test_fingerprint_depends_on_content_not_location(tmp_path):
@@ -258,7 +264,7 @@ def test_collect_places_each_case_on_its_coordinates():
     layout = g.layout()
     yaml.safe_dump(layout)  # plain Python only (Snakemake params)
     index = {c.id: (g.dims[0].values[i][0], g.dims[1].values[j][0]) for (i, j), c in np.ndenumerate(g.cases)}
-    ds = grid.collect(layout, lambda case_id: fake_case(g.unique_cases()[case_id], *index[case_id]))
+    ds = collect(layout, lambda case_id: fake_case(g.unique_cases()[case_id], *index[case_id]))
     assert ds["contact_resistance"].dims == ("sigma", "speed")
     for sigma in ds["sigma"].values:
         for speed in ds["speed"].values:
@@ -281,9 +287,9 @@ def test_collect_refuses_a_file_of_another_scene_or_speed():
     cases = g.unique_cases()
 
     with pytest.raises(grid.GridError, match="holds scene"):
-        grid.collect(g.layout(), lambda case_id: fake_case(cases[case_id], 0.5e-6, 0.01, scene_hash="0" * 16))
+        collect(g.layout(), lambda case_id: fake_case(cases[case_id], 0.5e-6, 0.01, scene_hash="0" * 16))
     with pytest.raises(grid.GridError, match="speed"):
-        grid.collect(g.layout(), lambda case_id: fake_case(cases[case_id], 0.5e-6, 123.0))
+        collect(g.layout(), lambda case_id: fake_case(cases[case_id], 0.5e-6, 123.0))
 
 
 def test_solver_sources_take_a_subpackage_whole_and_follow_its_imports(tmp_path):
@@ -301,7 +307,7 @@ def test_solver_sources_take_a_subpackage_whole_and_follow_its_imports(tmp_path)
     }
     for name, text in files.items():
         (pkg / name).write_text(text)
-    found = {str(p.relative_to(pkg)) for p in grid.solver_sources(pkg)}
+    found = {str(p.relative_to(pkg)) for p in grid.solver_sources(pkg, ("solver", "scene"))}
     assert found == {"__init__.py", "solver.py", "scene.py", "sub/__init__.py", "sub/a.py", "sub/b.py", "helper.py"}
 
 

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import lubecontact as lc
+from lubecontact.model.coupling import WarmStart
 
 TABLE1 = "config/scenes/table1.yaml"
 SCALARS = ["contact_resistance", "friction_coefficient", "fluid_force", "contact_force", "min_film_thickness"]
@@ -104,7 +105,7 @@ def test_papers_qualitative_findings(key, low, high, resistance_rises):
 
 
 def test_non_convergence_is_reported_and_the_cli_exits_3(tmp_path):
-    from lubecontact.cli import main
+    from lubecontact.cli.main import main
 
     s = scene(**{"solver.max_iterations": 1, "mesh.nx": 21, "mesh.ny": 11})
     ds = lc.solve(s)
@@ -155,13 +156,15 @@ def test_hard_cases_meshes_stay_numerically_stable(nodes):
 
 
 def test_a_failed_force_balance_is_written_as_not_converged(monkeypatch):
-    from lubecontact import solver
+    from lubecontact.model import coupling
+    from lubecontact.model.evaluation import evaluate
+    from lubecontact.model.model import SolveError
 
     def failing(model, delta, z_guess, tolerance, *args, **kwargs):
-        state = solver.evaluate(model, 0.0, delta)
-        raise solver.SolveError("forced failure for the test", state)
+        state = evaluate(model, 0.0, delta)
+        raise SolveError("forced failure for the test", state)
 
-    monkeypatch.setattr(solver, "balance_force", failing)
+    monkeypatch.setattr(coupling, "balance_force", failing)
     ds = lc.solve(scene(**{"mesh.nx": 21, "mesh.ny": 11}))
     assert ds["converged"].item() == 0
     assert "NOT CONVERGED: forced failure" in ds.attrs["notes"]
@@ -173,13 +176,13 @@ def test_rigid_model_ignores_a_deformation_warm_start():
     elastic = scene(**{"mesh.nx": 21, "mesh.ny": 11, "effects.hydrodynamics": False})
     _, state = lc.solve(elastic, return_state=True)
     rigid = elastic.replace({"effects.elastic_deformation": False})
-    warm = lc.solve(rigid, initial={"z": state.z, "delta": state.delta})
+    warm = lc.solve(rigid, initial=WarmStart(z=state.z, delta=state.delta))
     cold = lc.solve(rigid)
     assert warm["contact_resistance"].item() == pytest.approx(cold["contact_resistance"].item(), rel=1e-6)
 
 
 def test_sweep_continuation_gives_the_cold_answers():
-    # the warm start skips the coarse-mesh levels (solver._fine_warm_start): the answer must
+    # the warm start skips the coarse-mesh levels (coupling.is_fine_warm_start): the answer must
     # still be each point's cold-start answer, across boundary, mixed and full-film speeds
     s = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 21})
     speeds = np.geomspace(1e-4, 10.0, 7)

@@ -7,8 +7,10 @@ import numpy as np
 import pytest
 
 import lubecontact as lc
-from lubecontact import solver
-from lubecontact.newton import fluid_pressure_response
+from lubecontact.model import coupling
+from lubecontact.model.evaluation import evaluate
+from lubecontact.model.model import Model
+from lubecontact.model.newton import contact_newton_step, fluid_pressure_response
 
 TABLE1 = "config/scenes/table1.yaml"
 
@@ -24,18 +26,18 @@ def test_fluid_response_equals_finite_differences_of_the_reynolds_solve(speed):
     of both signs. The response runs on the faces' slopes (percolating flow factors)."""
     s = scene(**{"operating.speed": speed})
     _, state = lc.solve(s, return_state=True)
-    model = solver.Model.assemble(s)
+    model = Model.assemble(s)
     mesh = model.mesh
     X, Y = np.meshgrid(mesh.x, mesh.y)
     pressurised = state.fluid_pressure > 0.05 * state.fluid_pressure.max()
     v = np.where(pressurised, np.cos(X / (mesh.x.max() - mesh.x.min()) * 7.0) * (1.0 + Y / mesh.length), 0.0)
     eps = 1e-3 * model.contact.sigma
-    plus = solver.evaluate(model, state.z, state.delta + eps * v, state.reynolds.cavitated)
-    minus = solver.evaluate(model, state.z, state.delta - eps * v, state.reynolds.cavitated)
+    plus = evaluate(model, state.z, state.delta + eps * v, state.reynolds.cavitated)
+    minus = evaluate(model, state.z, state.delta - eps * v, state.reynolds.cavitated)
     assert np.array_equal(plus.reynolds.cavitated, state.reynolds.cavitated)
     assert np.array_equal(minus.reynolds.cavitated, state.reynolds.cavitated)
     finite = (plus.fluid_pressure - minus.fluid_pressure) / (2 * eps)
-    exact_state = solver.evaluate(model, state.z, state.delta, state.reynolds.cavitated)
+    exact_state = evaluate(model, state.z, state.delta, state.reynolds.cavitated)
     linear = fluid_pressure_response(model, exact_state)(v)
     scale = np.abs(finite).max()
     assert scale > 0.0
@@ -48,9 +50,9 @@ def test_coupled_newton_and_mixed_contact_steps_reach_the_same_solution(monkeypa
     the coupled one in fewer outer iterations."""
     s = scene(**{"operating.speed": 0.1})
     coupled = lc.solve(s)
-    from lubecontact.anderson import AndersonMixer
+    from lubecontact.numerics.anderson import AndersonMixer
 
-    monkeypatch.setattr(solver, "deformation_stepper", lambda model: (solver.contact_newton_step, AndersonMixer(beta=1.0)))
+    monkeypatch.setattr(coupling, "deformation_stepper", lambda model: (contact_newton_step, AndersonMixer(beta=1.0)))
     mixed = lc.solve(s)
     assert coupled["converged"].item() == 1 and mixed["converged"].item() == 1
     for name in ("contact_resistance", "friction_coefficient", "separation", "fluid_force"):
@@ -61,7 +63,7 @@ def test_coupled_newton_and_mixed_contact_steps_reach_the_same_solution(monkeypa
 def test_backtracking_makes_newton_converge_where_full_steps_diverge():
     """Kelley's example (1995, section 8.1): Newton's method on arctan(x) = 0 from x = 10
     overshoots further each step; with Armijo backtracking it reaches the root 0."""
-    from lubecontact.newton import Backtracking
+    from lubecontact.model.newton import Backtracking
 
     def newton(x, search=None, iterations=30):
         for _ in range(iterations):
@@ -84,7 +86,7 @@ def test_backtracking_makes_newton_converge_where_full_steps_diverge():
 
 
 def test_backtracking_stops_halving_at_the_smallest_fraction():
-    from lubecontact.newton import SMALLEST_STEP_FRACTION, Backtracking
+    from lubecontact.model.newton import SMALLEST_STEP_FRACTION, Backtracking
 
     search = Backtracking()
     search.accept(0.0, 1.0, 1.0)
@@ -102,8 +104,8 @@ def test_stalled_newton_steps_backtrack_to_the_mixed_steps_solution(monkeypatch)
     cavitated sets (650 <-> 654 nodes) and stall; the backtracked steps converge, to the
     solution the contact-only step with Anderson mixing (another path) reaches, in fewer
     outer iterations (16 against 65 for the restart with mixed steps it replaced)."""
-    from lubecontact.anderson import AndersonMixer
-    from lubecontact.newton import Backtracking
+    from lubecontact.model.newton import Backtracking
+    from lubecontact.numerics.anderson import AndersonMixer
 
     fractions = []
 
@@ -112,15 +114,15 @@ def test_stalled_newton_steps_backtrack_to_the_mixed_steps_solution(monkeypatch)
             fractions.append(super().retry(norm))
             return fractions[-1]
 
-    monkeypatch.setattr(solver, "Backtracking", Recorded)
+    monkeypatch.setattr(coupling, "Backtracking", Recorded)
     s = lc.load_scene(TABLE1, {"mesh.nx": 51, "mesh.ny": 51, "operating.speed": 0.0158})
     backtracked = lc.solve(s)
     assert any(fractions)  # it engaged and shortened a step
 
     def mixed_steps(model):  # a fresh mixer for each level, as deformation_stepper gives
-        return solver.contact_newton_step, AndersonMixer(beta=1.0)
+        return contact_newton_step, AndersonMixer(beta=1.0)
 
-    monkeypatch.setattr(solver, "deformation_stepper", mixed_steps)
+    monkeypatch.setattr(coupling, "deformation_stepper", mixed_steps)
     mixed = lc.solve(s)
     assert backtracked["converged"].item() == 1 and mixed["converged"].item() == 1
     for name in ("contact_resistance", "friction_coefficient", "separation", "fluid_force"):

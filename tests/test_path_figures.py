@@ -1,4 +1,4 @@
-"""Figures of the full electrical path (lubecontact.plotting): the paper's curves dashed on
+"""Figures of the full electrical path (lubecontact.plotting.figures): the paper's curves dashed on
 the full path's axes, hollow points outside a sub-model's range, and the design map of the
 highest closed speed against a resistance law whose crossing is known exactly."""
 
@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from lubecontact import load_scene, plotting
+from lubecontact import load_scene
+from lubecontact.plotting import figures as plotting
 
 SPEEDS = [1e-2, 1e-1, 1.0, 10.0]
 

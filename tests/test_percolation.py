@@ -12,16 +12,16 @@ import pytest
 from scipy.stats import norm
 
 import lubecontact as lc
-from lubecontact.solver import Model
-from lubecontact.flow_factors import (
+from lubecontact.model.model import Model
+from lubecontact.numerics.reynolds import solve_reynolds
+from lubecontact.physics.flow_factors import (
     SEALED_LEAKAGE,
     expected_gap,
     expected_gap_slope,
     percolating_coefficient_and_slope,
     poiseuille_coefficient,
 )
-from lubecontact.percolation import face_film
-from lubecontact.reynolds import solve_reynolds
+from lubecontact.physics.percolation import face_film
 
 pytestmark = pytest.mark.filterwarnings("error")
 

@@ -1,6 +1,6 @@
 """Issue 13 in the pipeline's library pieces: a case file counts only if complete
-(lubecontact.casefiles), job logs keep tracebacks (lubecontact.joblog), job plans are files
-rewritten only on change (lubecontact.plans). End to end: test_workflow.py."""
+(lubecontact.io.case_files), job logs keep tracebacks (lubecontact.io.job_log), job plans are files
+rewritten only on change (lubecontact.io.job_plans). End to end: test_workflow.py."""
 
 import os
 import re
@@ -8,10 +8,12 @@ import sys
 
 import pytest
 
-from lubecontact import casefiles, joblog, plans
-from lubecontact.scene import load_scene
-from lubecontact.solver import solve
-from lubecontact.output import write_case
+from lubecontact.io import case_files as casefiles
+from lubecontact.io import job_log as joblog
+from lubecontact.io import job_plans as plans
+from lubecontact.io.case_schema import write_case
+from lubecontact.model.solve import solve
+from lubecontact.scene.scene import load_scene
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""Figure rendering from a collected figure Dataset (lubecontact.plotting), on synthetic data.
+"""Figure rendering from a collected figure Dataset (lubecontact.plotting.figures), on synthetic data.
 
 Truths used: x quantities recomputed by hand (U/F, mu U/F); where a marked point must sit
 (data coordinates of a non-converged point; the top edge, in axes coordinates, for +inf);
@@ -10,7 +10,7 @@ import pytest
 import xarray as xr
 from matplotlib.image import imread
 
-from lubecontact import plotting
+from lubecontact.plotting import figures as plotting
 
 SPEEDS = [1e-3, 1e-2, 1e-1, 1.0]
 SIGMAS = [0.5e-6, 1.0e-6]

@@ -12,8 +12,13 @@ import numpy as np
 import pytest
 from test_reynolds import U, independent_lcp, line_problem, rough_cylinder_2d, small_lcp
 
-from lubecontact.projected_smoothing import projected_gauss_seidel, red_black_colour, smoothed_cavitated_set
-from lubecontact.reynolds import _coarser, _interpolate, reynolds_system, solve_reynolds
+from lubecontact.numerics.projected_smoothing import (
+    projected_gauss_seidel,
+    red_black_colour,
+    smoothed_cavitated_set,
+)
+from lubecontact.numerics.reynolds import COARSEST_NODES, reynolds_system, solve_reynolds
+from lubecontact.numerics.transfer import coarser_mesh, interpolate_field
 
 pytestmark = pytest.mark.filterwarnings("error")
 
@@ -57,9 +62,9 @@ def test_smoothing_moves_an_interpolated_free_boundary_towards_the_fine_one(nx, 
     mesh, hT, k = rough_cylinder_2d(nx=nx, ny=ny, tilt=tilt)
     speed = 0.1
     fine = solve_reynolds(mesh, hT, k, speed)
-    coarse = _coarser(mesh)
-    coarse_solution = solve_reynolds(coarse, _interpolate(hT, mesh, coarse), _interpolate(k, mesh, coarse), speed)
-    interpolated = _interpolate(coarse_solution.pressure, coarse, mesh)
+    coarse = coarser_mesh(mesh, COARSEST_NODES)
+    coarse_solution = solve_reynolds(coarse, interpolate_field(hT, mesh, coarse), interpolate_field(k, mesh, coarse), speed)
+    interpolated = interpolate_field(coarse_solution.pressure, coarse, mesh)
     system = reynolds_system(mesh, hT, k, speed)
     truth = fine.cavitated[system.unknown]
     raw = np.count_nonzero((interpolated <= 0.0)[system.unknown] != truth)

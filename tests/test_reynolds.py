@@ -11,9 +11,9 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from lubecontact.flow_factors import expected_gap, poiseuille_coefficient
-from lubecontact.mesh import Mesh
-from lubecontact.reynolds import boundary_flux, solve_reynolds
+from lubecontact.numerics.mesh import Mesh
+from lubecontact.numerics.reynolds import boundary_flux, solve_reynolds
+from lubecontact.physics.flow_factors import expected_gap, poiseuille_coefficient
 
 pytestmark = pytest.mark.filterwarnings("error")
 
@@ -259,7 +259,8 @@ def test_factors_of_a_nearby_set_solve_exactly_without_a_factorisation():
     factorised."""
     from scipy.sparse.linalg import spsolve
 
-    from lubecontact.reynolds import REUSE_MAX_CHANGES, BlockInverse, reynolds_system
+    from lubecontact.numerics.linear_algebra import REUSE_MAX_CHANGES, BlockInverse
+    from lubecontact.numerics.reynolds import reynolds_system
 
     mesh, hT, k = rough_cylinder_2d(nx=61, ny=41)
     system = reynolds_system(mesh, hT, k, 0.1)
@@ -282,9 +283,10 @@ def test_capacitance_corrections_invert_the_block_on_a_moved_set_exactly():
     """ExtendedFactors from the factors of A on one set is the exact inverse of A on a set
     with nodes removed and added (the Schur complement identities it is built on), checked
     against scipy spsolve on the new block: CG would stop after one step."""
-    from scipy.sparse.linalg import spsolve, splu
+    from scipy.sparse.linalg import splu, spsolve
 
-    from lubecontact.reynolds import ExtendedFactors, reynolds_system
+    from lubecontact.numerics.linear_algebra import ExtendedFactors
+    from lubecontact.numerics.reynolds import reynolds_system
 
     mesh, hT, k = rough_cylinder_2d(nx=61, ny=41)
     system = reynolds_system(mesh, hT, k, 0.1)

@@ -10,7 +10,13 @@ import pytest
 from scipy.integrate import quad
 
 import lubecontact
-from lubecontact.rough_surface import RoughContact, gaussian_moment, rough_contact, summit_height_std, summit_offset
+from lubecontact.physics.rough_surface import (
+    RoughContact,
+    gaussian_moment,
+    rough_contact,
+    summit_height_std,
+    summit_offset,
+)
 
 pytestmark = pytest.mark.filterwarnings("error")
 
@@ -238,7 +244,7 @@ def test_rough_contact_dataset(alleviation):
 
 
 def test_public_name_is_the_function():
-    import lubecontact.solver  # noqa: F401  (imports the rough-surface module)
+    import lubecontact.model.solve  # noqa: F401  (imports the rough-surface module)
 
     assert callable(lubecontact.rough_contact)
     assert callable(lubecontact.sweep)

@@ -13,7 +13,7 @@ import pytest
 import yaml
 
 from lubecontact import load_scene
-from lubecontact.scene import Scene, SceneError, parse_override
+from lubecontact.scene.scene import Scene, SceneError, parse_override
 
 TABLE1_FILE = Path(__file__).resolve().parents[1] / "config" / "scenes" / "table1.yaml"
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from lubecontact.shear_factors import (
+from lubecontact.physics.shear_factors import (
     couette_shear_factor,
     couette_stress_factor,
     poiseuille_stress_factor,
@@ -62,7 +62,7 @@ def test_couette_factor_finite_nonnegative_and_plain_couette_for_thick_films():
 
 def test_viscous_shear_between_rough_surfaces_exceeds_the_mean_gap_estimate():
     # the "1.2-1.8x too low at h/sigma = 0.5-3": mu U phi_f/h against mu U/h_T
-    from lubecontact.flow_factors import expected_gap
+    from lubecontact.physics.flow_factors import expected_gap
 
     H = np.array([0.5, 1.0, 2.0, 3.0])
     ratio = couette_shear_factor(H) / (1.0 / expected_gap(H, 1.0))
@@ -70,8 +70,8 @@ def test_viscous_shear_between_rough_surfaces_exceeds_the_mean_gap_estimate():
 
 
 def test_couette_gap_of_unequal_roughness():
-    from lubecontact.flow_factors import expected_gap
-    from lubecontact.shear_factors import couette_gap
+    from lubecontact.physics.flow_factors import expected_gap
+    from lubecontact.physics.shear_factors import couette_gap
 
     sigma = 0.5e-6
     h = np.array([-1.0, 0.3, 1.0, 2.0, 4.9, 5.1, 9.0]) * sigma

@@ -11,7 +11,7 @@ from importlib.metadata import PackageNotFoundError, version
 import numpy as np
 import pytest
 
-from lubecontact import rough_surface
+from lubecontact.physics import rough_surface
 
 HEAVY = ("numba", "llvmlite", "scipy", "xarray", "pandas", "importlib.metadata")
 # planning needs importlib.metadata where a scene has a measured surface (the cache key
@@ -45,7 +45,7 @@ def test_planning_the_workflow_stays_light():
     needs scipy, a warm one (the session's, which the fresh process shares) does not."""
     import yaml
 
-    from lubecontact import grid
+    from lubecontact.studies import figure_grids as grid
 
     with open("config/test.yaml") as file:
         config = yaml.safe_load(file)
@@ -53,8 +53,7 @@ def test_planning_the_workflow_stays_light():
     grid.expand_all(specs)
     loaded = _fresh(
         "import json, sys, yaml\n"
-        "from lubecontact import grid, convergence\n"
-        "from lubecontact.unsteady import study\n"
+        "from lubecontact.studies import accuracy_plan as convergence, figure_grids as grid, transient_cases as study\n"
         "config = yaml.safe_load(open('config/test.yaml'))\n"
         "specs = {f: grid.figure_spec(f, 'config/figures', config['figures']) for f in config['figures']}\n"
         "grid.expand_all(specs)\n"

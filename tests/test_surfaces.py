@@ -14,10 +14,16 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from lubecontact.cli import main
-from lubecontact.surfaces import SurfaceError, composite, parameters, read_surface, spectral_moments
-from lubecontact.surfaces.reading import from_array
+from lubecontact.cli.main import main
+from lubecontact.surfaces import (
+    SurfaceError,
+    composite,
+    parameters,
+    read_surface,
+    spectral_moments,
+)
 from lubecontact.surfaces.moments import hann_window, tukey_window
+from lubecontact.surfaces.reading import from_array
 from lubecontact.surfaces.synthetic import isotropic_surface, rolled_power_law
 
 
@@ -227,7 +233,7 @@ def test_cli_bad_input_exit_2_nothing_written(tmp_path, monkeypatch, capsys, set
 
 
 def test_cli_writes_a_scene_section(tmp_path, capsys):
-    from lubecontact.scene import load_scene
+    from lubecontact.scene.scene import load_scene
 
     z = isotropic_surface(lambda q: rolled_power_law(q, 2e5, 1.5e6, 0.7), 64, 64e-6, seed=9, rms=0.5e-6)
     np.save(tmp_path / "s.npy", z * 1e6)
@@ -264,7 +270,7 @@ def scene_dir(tmp_path):
 
 
 def test_scene_takes_roughness_from_the_file(scene_dir, monkeypatch):
-    from lubecontact.scene import load_scene
+    from lubecontact.scene.scene import load_scene
 
     monkeypatch.chdir(scene_dir / "maps")  # the path is relative to the scene file, not to here
     scene = load_scene(scene_dir / "scenes" / "s.yaml")
@@ -316,7 +322,7 @@ def test_analysed_surface_is_kept_on_disk_by_content(scene_dir, tmp_path, monkey
 
 
 def test_case_hash_sees_the_content_not_the_name(scene_dir):
-    from lubecontact.scene import load_scene
+    from lubecontact.scene.scene import load_scene
 
     path = scene_dir / "scenes" / "s.yaml"
     first = load_scene(path)
@@ -332,7 +338,7 @@ def test_case_hash_sees_the_content_not_the_name(scene_dir):
 
 
 def test_scene_without_surface_keeps_its_canonical_form():
-    from lubecontact.scene import load_scene
+    from lubecontact.scene.scene import load_scene
 
     text = load_scene({}).canonical_yaml()
     assert "surface" not in text
@@ -349,7 +355,7 @@ def test_scene_without_surface_keeps_its_canonical_form():
     ids=["sigma_too", "missing_file", "raw_matrix", "cutoff_below_nyquist"],
 )
 def test_scene_surface_refusals(scene_dir, overrides, reason):
-    from lubecontact.scene import SceneError, load_scene
+    from lubecontact.scene.scene import SceneError, load_scene
 
     np.save(scene_dir / "maps" / "raw.npy", np.zeros((16, 16)))
     with pytest.raises(SceneError) as err:
@@ -360,7 +366,7 @@ def test_scene_surface_refusals(scene_dir, overrides, reason):
 def test_surface_override_on_a_scene_without_one(scene_dir):
     """A grid sweeps roughness.surface over a Table 1-like scene: the override replaces
     sigma, eta, R_peak and its path starts at the scene file's directory."""
-    from lubecontact.scene import SceneError, load_scene
+    from lubecontact.scene.scene import SceneError, load_scene
 
     (scene_dir / "scenes" / "plain.yaml").write_text("roughness: {sigma: 1.0e-6, asperity_radius: 2.0e-4}\n")
     base = load_scene(scene_dir / "scenes" / "plain.yaml")
@@ -393,7 +399,7 @@ def test_fig04_alpha_holds_mccool_bandwidth_and_fig04_does_not():
     """The captions' claims from the grids themselves: alpha = (eta R sigma / 0.02036)^2."""
     from pathlib import Path
 
-    from lubecontact import grid
+    from lubecontact.studies import figure_grids as grid
 
     root = Path(__file__).resolve().parents[1]
 

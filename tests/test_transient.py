@@ -183,7 +183,7 @@ def test_slow_oscillation_peaks_at_the_steady_resistance_of_its_peak_speed():
 def test_cli_transient_writes_the_series_and_exits_3_when_a_step_fails(tmp_path, capsys):
     import xarray as xr
 
-    from lubecontact.cli import main
+    from lubecontact.cli.main import main
 
     common = ["transient", TABLE1, "--set", "mesh.ny=1", "--set", "mesh.nx=31", "--set", "motion.kind=stop",
               "--set", "motion.duration=0.02", "--set", "operating.speed=1.0", "--set", "motion.tolerance=1e-2"]

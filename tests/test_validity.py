@@ -1,15 +1,13 @@
 """Validity flags (DESIGN.md Part II): every ground a case leaves is named in its output."""
 
-import math
 
-import numpy as np
 import pytest
 
 import lubecontact as lc
-from lubecontact.cli import main
-from lubecontact.inlet import inlet_film_fraction, required_inlet
-from lubecontact.mesh import build_mesh
-from lubecontact.validity import bandwidth
+from lubecontact.cli.main import main
+from lubecontact.model.validity import bandwidth
+from lubecontact.numerics.mesh import build_mesh
+from lubecontact.physics.inlet import inlet_film_fraction, required_inlet
 
 TABLE1 = "config/scenes/table1.yaml"
 LINE = {"mesh.nx": 21, "mesh.ny": 1}

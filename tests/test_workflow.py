@@ -24,7 +24,7 @@ import xarray as xr
 import yaml
 from matplotlib.image import imread
 
-from lubecontact import grid
+from lubecontact.studies import figure_grids as grid
 
 ROOT = Path(__file__).resolve().parents[1]
 TREE = ("Snakefile", "config", "workflow", "src")
@@ -226,8 +226,11 @@ def test_nothing_to_do_after_a_build(built):
 def test_plot_style_change_only_redraws(built):
     with edited(built / "config" / "figures" / "fig06.yaml", 'title: "cylinder radius R"', 'title: "radius"'):
         assert planned(built, *TINY) == Counter(plot=1, all=1)
-    with edited(built / "src" / "lubecontact" / "plotting.py", '"\\u2013",\n', '"-",\n'):
+    with edited(built / "src" / "lubecontact" / "plotting" / "figures.py", '"\\u2013",\n', '"-",\n'):
         assert planned(built, *TINY) == Counter(plot=16, all=1)
+    # the CLI and the studies' planning decide no case: editing them reruns nothing
+    with edited(built / "src" / "lubecontact" / "cli" / "main.py", '"""', '"""Edited. '):
+        assert planned(built, *TINY) == Counter()
 
 
 @pytest.mark.slow
@@ -238,7 +241,7 @@ def test_one_grid_value_solves_one_curve(built):
 
 @pytest.mark.slow
 def test_solver_change_resolves_every_case_and_content_decides(built):
-    solver = built / "src" / "lubecontact" / "solver.py"
+    solver = built / "src" / "lubecontact" / "model" / "coupling.py"  # the coupling loop: steady and transient
     with edited(solver, '"""', '"""Edited. '):  # the transient cases run the solver too
         assert planned(built, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY, **TRANSIENT)
     # restored: newer time stamp, same content -> nothing to do

@@ -1,4 +1,4 @@
-# What accuracy costs (lubecontact.convergence): the Table 1 contact on a ladder of meshes,
+# What accuracy costs (lubecontact.studies.accuracy): the Table 1 contact on a ladder of meshes,
 # domain lengths and solver tolerances at speeds in every regime, each solve timed; then
 # Richardson extrapolation -> error of every mesh -> table (netCDF + Markdown) -> figure.
 # The study is config/accuracy.yaml, deep-merged with config["accuracy"] (config/test.yaml
@@ -6,7 +6,7 @@
 
 from snakemake.exceptions import WorkflowError
 
-from lubecontact import convergence as lcconv
+from lubecontact.studies import accuracy_plan as lcconv
 
 ACCURACY = lcconv.study_spec("config/accuracy.yaml", config.get("accuracy"))
 # The timing job takes every core of a local run, so it runs alone and its wall times are
@@ -22,7 +22,7 @@ rule accuracy_solve:
     input:
         sources=SOLVER_SOURCES,
         study="config/accuracy.yaml",
-        code="src/lubecontact/convergence.py",
+        code=["src/lubecontact/studies/accuracy.py", "src/lubecontact/studies/accuracy_plan.py"],
         plan=plan_path("accuracy/study", ACCURACY),
     output:
         f"{RESULTS}/accuracy/study.nc",
@@ -41,7 +41,7 @@ rule accuracy_solve:
 rule accuracy_table:
     input:
         study=f"{RESULTS}/accuracy/study.nc",
-        code="src/lubecontact/convergence.py",
+        code="src/lubecontact/studies/accuracy.py",
     output:
         nc=f"{RESULTS}/data/accuracy_cost.nc",
         md=report(f"{RESULTS}/data/accuracy_cost.md", category="Accuracy and cost"),
@@ -58,7 +58,7 @@ rule accuracy_table:
 rule accuracy_figure:
     input:
         data=f"{RESULTS}/data/accuracy_cost.nc",
-        code="src/lubecontact/convergence.py",
+        code="src/lubecontact/plotting/accuracy.py",
     output:
         png=report(
             f"{RESULTS}/figures/accuracy_cost.png",

@@ -1,28 +1,10 @@
-# Figure grids -> cases -> chunks, at parse time (lubecontact.grid; library code).
+# Figure grids -> cases -> chunks, at parse time (lubecontact.studies.figure_grids).
 #
 # Each figure's YAML (config/figures/figNN.yaml, deep-merged with config["figures"][figNN])
 # expands into scenes; a case is identified by its scene's content hash, so a case shared
 # by several figures is one file, <results>/cases/<hash>.nc, solved once. A bad value fails
-# here, before anything runs, naming the figure, the key and the value.
+# here, before anything runs, naming the figure, the key and the value. Needs common.smk.
 
-import sys
-from pathlib import Path
-
-from snakemake.utils import validate
-
-# Run the library of this tree (src/), the very files declared as solve inputs, whatever
-# lubecontact may be installed elsewhere; the scripts do the same.
-sys.path.insert(0, str(Path(workflow.basedir) / "src"))
-from lubecontact import casefiles as lccases
-from lubecontact import grid as lcgrid
-from lubecontact import plans as lcplans
-
-
-validate(config, "../schemas/config.schema.yaml")
-
-# Everything the workflow writes goes under RESULTS (config key `results`, default
-# "results"; config/test.yaml: results/test).
-RESULTS = config["results"]
 FIGURES = list(config["figures"])
 SPECS = {}
 for _figure in FIGURES:
@@ -32,26 +14,14 @@ GRIDS = lcgrid.expand_all(SPECS)
 CHUNKS = lcgrid.plan_chunks(
     GRIDS.values(), None if config["cases_per_job"] == "curve" else config["cases_per_job"]
 )
-# The library files that decide a case's answer (solver, scene and what they import): an
-# edit reruns the solve jobs; edits of plotting.py or grid.py do not.
-SOLVER_SOURCES = [str(p) for p in lcgrid.solver_sources("src/lubecontact")]
 
 
 wildcard_constraints:
     figure="|".join(FIGURES),
 
 
-def case_path(case_id):
-    return f"{RESULTS}/cases/{case_id}.nc"
-
-
-def plan_path(name, data):
-    """A job's plan as a small JSON input file (lubecontact.plans), not as params."""
-    return lcplans.write_plan(f"{RESULTS}/plans/{name}.json", data)
-
-
 # Every case of this config. A case file counts only if it is complete (it opens, reads
-# back, carries its scene hash and solver fingerprint: lubecontact.casefiles); any other
+# back, carries its scene hash and solver fingerprint: lubecontact.io.case_files); any other
 # file under a case's name (truncated, overwritten) is moved to cases/.corrupt/ here, so
 # Snakemake sees the case missing and solves it again, and rule all (which lists every
 # case and data file) rebuilds what depends on it. Only the main Snakemake process does

@@ -1,5 +1,5 @@
 # One netCDF per figure: its cases along the swept parameters and speed, CF attributes
-# (lubecontact.grid.collect). The layout is a JSON plan (plans/collect/<figure>.json): a
+# (lubecontact.studies.collect). The layout is a JSON plan (plans/collect/<figure>.json): a
 # changed grid layout re-collects. A case file that does not read names itself in the log.
 
 

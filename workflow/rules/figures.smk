@@ -1,12 +1,12 @@
-# Figures from <results>/data/*.nc only (lubecontact.plotting): PNG (in the report) and PDF.
-# Inputs are the data and plotting.py; the plot section of the grid YAML is a param, so a
+# Figures from <results>/data/*.nc only (lubecontact.plotting.figures): PNG (in the report) and PDF.
+# Inputs are the data and plotting/figures.py; the plot section of the grid YAML is a param, so a
 # style change re-renders without solving or collecting.
 
 
 rule plot:
     input:
         data=f"{RESULTS}/data/{{figure}}.nc",
-        code="src/lubecontact/plotting.py",
+        code="src/lubecontact/plotting/figures.py",
         # compare: figXX draws that figure's data dashed on the same axes (figNNp: the paper's)
         reference=lambda w: [f"{RESULTS}/data/{SPECS[w.figure]['compare']}.nc"] if "compare" in SPECS[w.figure] else [],
     output:

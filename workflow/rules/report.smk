@@ -5,8 +5,6 @@
 
 import subprocess
 
-import lubecontact
-
 
 def _git_state(root):
     def git(*args):

@@ -3,9 +3,8 @@
 # curves are ordinary grids (config/figures/fig04_measured.yaml, roughness.surface).
 
 SURFACE_FILES = list(config.get("surfaces") or [])
-SURFACE_CODE = sorted(
-    str(p.relative_to(workflow.basedir)) for p in (Path(workflow.basedir) / "src/lubecontact/surfaces").glob("*.py")
-)
+# the figure and the surface analysis it draws (reading, moments, McCool)
+SURFACE_CODE = [str(p) for p in lcgrid.solver_sources("src/lubecontact", ("plotting.surfaces",))]
 
 
 rule surfaces_psd:

@@ -4,14 +4,11 @@
 # <results>/transient/<hash>.nc and shared by the figures that use it. Edits of the solver or
 # of the unsteady package rerun the cases (TRANSIENT_SOURCES).
 
-from pathlib import Path
-
-from lubecontact.unsteady import study as lcstudy
+from lubecontact.studies import transient_cases as lcstudy
 
 TRANSIENT = lcstudy.study_spec("config/transient.yaml", config.get("transient"))
 TRANSIENT_CASES = lcstudy.figure_cases(TRANSIENT)
 TRANSIENT_OVERRIDES = lcstudy.case_overrides(TRANSIENT, TRANSIENT_CASES)
-TRANSIENT_SOURCES = SOLVER_SOURCES + sorted(str(p) for p in Path("src/lubecontact/unsteady").glob("*.py"))
 TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_vibration"]
 
 
@@ -47,7 +44,7 @@ rule transient_case:
 rule transient_figure:
     input:
         cases=lambda w: [f"{RESULTS}/transient/{c['id']}.nc" for c in TRANSIENT_CASES[w.name]],
-        code="src/lubecontact/unsteady/plots.py",
+        code="src/lubecontact/plotting/transient.py",
     output:
         png=report(f"{RESULTS}/figures/transient_{{name}}.png", category="Transient"),
         pdf=f"{RESULTS}/figures/transient_{{name}}.pdf",

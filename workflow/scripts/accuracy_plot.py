@@ -1,15 +1,11 @@
-"""Figure accuracy_cost from results/data/accuracy_cost.nc (lubecontact.convergence)."""
+"""Figure accuracy_cost from results/data/accuracy_cost.nc (lubecontact.studies.accuracy)."""
 
-import sys
-from pathlib import Path
-
-sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
-
+import this_tree  # noqa: F401  (this tree's src/ first on sys.path)
 import xarray as xr
 
-from lubecontact import plotting
-from lubecontact.convergence import plot_accuracy_cost
-from lubecontact.joblog import job_log
+from lubecontact.io.job_log import job_log
+from lubecontact.plotting import figures as plotting
+from lubecontact.plotting.accuracy import plot_accuracy_cost
 
 with job_log(snakemake.log[0]):
     fig = plot_accuracy_cost(xr.load_dataset(snakemake.input.data))

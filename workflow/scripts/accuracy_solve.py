@@ -1,15 +1,12 @@
-"""Run the accuracy study (lubecontact.convergence.run_study): every mesh, domain length and
+"""Run the accuracy study (lubecontact.studies.accuracy.run_study): every mesh, domain length and
 tolerance of the study plan (JSON input) at each speed, each solve timed; the raw study Dataset."""
 
-import sys
-from pathlib import Path
+import this_tree  # noqa: F401  (this tree's src/ first on sys.path)
 
-sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
-
-from lubecontact.convergence import run_study
-from lubecontact.joblog import job_log
-from lubecontact.output import write_case
-from lubecontact.plans import read_plan
+from lubecontact.io.case_schema import write_case
+from lubecontact.io.job_log import job_log
+from lubecontact.io.job_plans import read_plan
+from lubecontact.studies.accuracy import run_study
 
 with job_log(snakemake.log[0]):
     study = run_study(read_plan(snakemake.input.plan), log=lambda line: print(line, flush=True))

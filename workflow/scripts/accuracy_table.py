@@ -1,16 +1,14 @@
 """Error budget of the accuracy study: Richardson extrapolation, error of every mesh against
-it, domain and tolerance checks (lubecontact.convergence) -> netCDF and Markdown."""
+it, domain and tolerance checks (lubecontact.studies.accuracy) -> netCDF and Markdown."""
 
-import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
-
+import this_tree  # noqa: F401  (this tree's src/ first on sys.path)
 import xarray as xr
 
-from lubecontact.convergence import accuracy_table, markdown
-from lubecontact.joblog import job_log
-from lubecontact.output import write_case
+from lubecontact.io.case_schema import write_case
+from lubecontact.io.job_log import job_log
+from lubecontact.studies.accuracy import accuracy_table, markdown
 
 with job_log(snakemake.log[0]):
     table = accuracy_table(xr.load_dataset(snakemake.input.study))

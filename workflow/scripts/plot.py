@@ -1,14 +1,10 @@
-"""Render one figure from results/data/<figure>.nc (lubecontact.plotting) to PNG and PDF."""
+"""Render one figure from results/data/<figure>.nc (lubecontact.plotting.figures) to PNG and PDF."""
 
-import sys
-from pathlib import Path
-
-sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
-
+import this_tree  # noqa: F401  (this tree's src/ first on sys.path)
 import xarray as xr
 
-from lubecontact import plotting
-from lubecontact.joblog import job_log
+from lubecontact.io.job_log import job_log
+from lubecontact.plotting import figures as plotting
 
 with job_log(snakemake.log[0]):
     ds = xr.load_dataset(snakemake.input.data)

@@ -2,24 +2,21 @@
 
 input.plan: JSON list of {id, scene, set} in the order of the output files. A case whose
 file is complete (it reads back with its scene hash and the fingerprint of the current
-solver sources: lubecontact.casefiles) is kept, so a job rerun because its membership
+solver sources: lubecontact.io.case_files) is kept, so a job rerun because its membership
 changed or because it was killed solves only what is missing; an unreadable file is
 solved again. A case that does not converge is written with converged = 0 and the job goes
 on; a scene that does not rebuild to its id, or a solver exception, fails the job loudly
 (its traceback in the job's log).
 """
 
-import sys
-from pathlib import Path
-
-sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
+import this_tree  # noqa: F401  (this tree's src/ first on sys.path)
 
 import lubecontact
-from lubecontact.casefiles import FINGERPRINT, case_problem
-from lubecontact.grid import sources_fingerprint
-from lubecontact.joblog import job_log
-from lubecontact.plans import read_plan
-from lubecontact.solver import solve_case
+from lubecontact.io.case_files import FINGERPRINT, case_problem
+from lubecontact.io.job_log import job_log
+from lubecontact.io.job_plans import read_plan
+from lubecontact.model.solve import solve_case
+from lubecontact.studies.figure_grids import sources_fingerprint
 
 
 def main(sm):
@@ -38,7 +35,7 @@ def main(sm):
                 f"{scene.hash}; the scene file changed since the workflow was planned, rerun snakemake"
             )
         try:
-            result, _ = solve_case(scene)  # a case file without xarray (lubecontact.case_result)
+            result, _ = solve_case(scene)  # a case file without xarray (lubecontact.io.case_result)
         except Exception as err:
             raise RuntimeError(f"case {case['id']} ({case['set']}): solve failed") from err
         result.with_attrs(**{FINGERPRINT: fingerprint}).write(path)

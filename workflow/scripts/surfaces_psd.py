@@ -1,13 +1,13 @@
-"""Draw the measured surfaces' profile spectra (lubecontact.surfaces.figure) to PNG and PDF."""
+"""Draw the measured surfaces' profile spectra (lubecontact.plotting.surfaces) to PNG and PDF."""
 
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
+import this_tree  # noqa: F401  (this tree's src/ first on sys.path)
 
+from lubecontact.plotting.figures import save
+from lubecontact.plotting.surfaces import psd_figure
 from lubecontact.surfaces import parameters, read_surface, spectral_moments
-from lubecontact.surfaces.figure import psd_figure
-from lubecontact.plotting import save
 
 with open(snakemake.log[0], "w") as log:
     sys.stdout = sys.stderr = log

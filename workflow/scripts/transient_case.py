@@ -1,12 +1,11 @@
 """Run one transient case (lubecontact.transient) from the base scene and its overrides."""
 
 import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
+import this_tree  # noqa: F401  (this tree's src/ first on sys.path)
 
 from lubecontact import load_scene, transient
-from lubecontact.output import write_case
+from lubecontact.io.case_schema import write_case
 
 with open(snakemake.log[0], "w") as log:
     sys.stdout = sys.stderr = log

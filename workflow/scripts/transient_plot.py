@@ -1,14 +1,13 @@
-"""Draw one transient figure (lubecontact.unsteady.plots) from its case files: PNG and PDF."""
+"""Draw one transient figure (lubecontact.plotting.transient) from its case files: PNG and PDF."""
 
 import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(snakemake.scriptdir).resolve().parents[1] / "src"))  # this tree's library
-
+import this_tree  # noqa: F401  (this tree's src/ first on sys.path)
 import xarray as xr
 
-from lubecontact.plotting import save
-from lubecontact.unsteady import plots, study
+from lubecontact.plotting import transient as plots
+from lubecontact.plotting.figures import save
+from lubecontact.studies import transient_cases as study
 
 with open(snakemake.log[0], "w") as log:
     sys.stdout = sys.stderr = log

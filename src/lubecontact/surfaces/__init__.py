@@ -16,8 +16,8 @@ picture holds:
   ``roughness.surface`` (parameters cached on the file's content).
 """
 
-from .mccool import McCool, composite, parameters
-from .moments import Moments, spectral_moments
-from .reading import Surface, SurfaceError, read_surface
+from lubecontact.surfaces.mccool import McCool, composite, parameters
+from lubecontact.surfaces.moments import Moments, spectral_moments
+from lubecontact.surfaces.reading import Surface, SurfaceError, read_surface
 
 __all__ = ["McCool", "Moments", "Surface", "SurfaceError", "composite", "parameters", "read_surface", "spectral_moments"]

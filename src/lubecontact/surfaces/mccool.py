@@ -20,8 +20,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .moments import Moments
-from .reading import SurfaceError
+from lubecontact.surfaces.moments import Moments
+from lubecontact.surfaces.reading import SurfaceError
 
 ETA_CONSTANT = 6.0 * math.pi * math.sqrt(3.0)  # eta = m4 / (6 pi sqrt(3) m2)
 RADIUS_CONSTANT = 0.375  # R_peak = 0.375 sqrt(pi / m4)

@@ -18,10 +18,10 @@ from dataclasses import asdict
 from importlib import metadata
 from pathlib import Path
 
-from ..atomic_write import write_text
-from .mccool import McCool, parameters
-from .moments import Moments, spectral_moments
-from .reading import file_digest, read_surface
+from lubecontact.io.atomic_write import write_text
+from lubecontact.surfaces.mccool import McCool, parameters
+from lubecontact.surfaces.moments import Moments, spectral_moments
+from lubecontact.surfaces.reading import file_digest, read_surface
 
 # the modules whose code decides the parameters (a change of any of them misses the cache)
 _ANALYSIS_SOURCES = ("reading.py", "moments.py", "mccool.py", "measured.py")

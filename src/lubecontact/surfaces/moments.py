@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .reading import Surface, SurfaceError
+from lubecontact.surfaces.reading import Surface, SurfaceError
 
 DEFAULT_CUTOFF_INTERVALS = 4.0  # lambda_c = 4 sampling intervals unless given
 WINDOWS = ("tukey", "hann", "none")

@@ -7,9 +7,10 @@ import sys
 
 import yaml
 
-from ..atomic_write import write_text
-from .mccool import McCool
-from .moments import DEFAULT_CUTOFF_INTERVALS
+from lubecontact.io.atomic_write import write_text
+from lubecontact.surfaces.mccool import McCool, composite, parameters
+from lubecontact.surfaces.moments import DEFAULT_CUTOFF_INTERVALS, spectral_moments
+from lubecontact.surfaces.reading import SurfaceError, read_surface
 
 
 def describe(title: str, p: McCool) -> list[str]:
@@ -54,9 +55,6 @@ def section_yaml(p: McCool, sources: list[str], split: tuple[float, float] | Non
 
 def run(args) -> int:
     """``lubecontact roughness``: 0 done, 2 bad input (the reason on stderr, nothing written)."""
-    from .mccool import composite, parameters
-    from .moments import spectral_moments
-    from .reading import SurfaceError, read_surface
 
     try:
         if len(args.surfaces) > 2:

@@ -42,8 +42,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..mesh import build_mesh
-from ..solver import Model, SolveError, coupled_solve, fluid_film
+from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
+from lubecontact.model.fluid_film import fluid_film
+from lubecontact.model.model import Model, SolveError
+from lubecontact.numerics.mesh import build_mesh
 
 FIRST_STEP = 1.0e-9  # s: first step from the steady start
 GROWTH, SHRINK, SAFETY = 4.0, 0.2, 0.9  # step-size controller limits
@@ -58,7 +60,7 @@ class Squeeze:
 
     coefficient: float  # c0, 1/s
     history: np.ndarray  # c1 h_T^n + c2 h_T^{n-1}, m/s
-    film_scale: float  # m, a length on which the force changes (solver._film_scale)
+    film_scale: float  # m, a length on which the force changes (model/evaluation.film_scale)
 
     def rate(self, expected_gap: np.ndarray) -> np.ndarray:
         return self.coefficient * expected_gap + self.history
@@ -108,7 +110,7 @@ class Level:
     state: object  # solver.State
     expected_gap: np.ndarray  # h_T used by the squeeze history
     model: Model  # the model of the step (its scene carries the speed)
-    diagnostics: dict
+    diagnostics: Diagnostics
     order: int = 0
     error: float = 0.0  # error estimate / tolerance of the step
     squeeze_rate: np.ndarray | None = None
@@ -160,21 +162,21 @@ class TimeIntegrator:
         )
         used = levels[-(order + 1):]
         times = [lv.time for lv in used]
-        initial = {
-            "z": _extrapolate(times, [lv.state.z for lv in used], t_new),
-            "delta": _extrapolate(times, [lv.state.delta for lv in used], t_new),
-            "stiffness": last.diagnostics.get("stiffness"),
-        }
+        initial = WarmStart(
+            z=_extrapolate(times, [lv.state.z for lv in used], t_new),
+            delta=_extrapolate(times, [lv.state.delta for lv in used], t_new),
+            stiffness=last.diagnostics.stiffness,
+        )
         if last.state.reynolds is not None:  # the set follows from the pressure (projected_smoothing)
-            initial["cavitated"] = last.state.reynolds.cavitated
-            initial["pressure"] = last.state.reynolds.pressure
+            initial.cavitated = last.state.reynolds.cavitated
+            initial.pressure = last.state.reynolds.pressure
         try:
             state, diag = coupled_solve(model, initial)
         except SolveError as err:
             return None, str(err)
         self.coupled_solves += 1
-        if not diag["converged"]:
-            return None, diag["failure"] or "coupled solve did not meet its tolerances"
+        if not diag.converged:
+            return None, diag.failure or "coupled solve did not meet its tolerances"
         predicted = _extrapolate(times, [lv.state.film for lv in used], t_new)
         fraction = error_fraction([dt] + [lv.time - lv_prev.time for lv, lv_prev in zip(used[::-1], used[::-1][1:])])
         weight = self.tolerance * np.maximum(np.abs(state.film), self.floor)
@@ -192,8 +194,8 @@ class TimeIntegrator:
         history = self.history
         self.wall_time = 0.0
         levels = [self.start()]
-        if not levels[0].diagnostics["converged"]:
-            return levels, "the steady start did not converge: " + levels[0].diagnostics["failure"]
+        if not levels[0].diagnostics.converged:
+            return levels, "the steady start did not converge: " + levels[0].diagnostics.failure
         # a steady state has dh/dt = 0: a virtual earlier level makes the first predictor exact
         levels.insert(0, dataclasses.replace(levels[0], time=-FIRST_STEP))
         breaks = [b for b in history.breakpoints() if b > 0.0] + [history.end]

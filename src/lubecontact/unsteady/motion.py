@@ -83,3 +83,20 @@ class SpeedHistory:
     def max_step(self) -> float:
         """Largest time step the motion allows while it moves (s)."""
         return self.period / STEPS_PER_PERIOD if self.period is not None else math.inf
+
+
+def motion_problems(scene) -> list[str]:
+    """Why the transient cannot follow ``scene``'s motion (empty when it can): checks of the
+    scene that only the time model makes, shared by ``transient`` and ``lubecontact show``."""
+    problems = []
+    if not scene.effects.asperity_contact and SpeedHistory.from_scene(scene).initial_speed() <= 0.0:
+        problems.append(
+            f"motion.kind = {scene.motion.kind!r}: smooth surfaces (effects.asperity_contact = false) cannot carry "
+            "the load at rest, where this motion starts; allowed: enable asperity_contact, or a motion that starts sliding"
+        )
+    if scene.effects.cavitation == "jfo":
+        problems.append(
+            "effects.cavitation = 'jfo': the transient's squeeze term is built on the Reynolds condition so far "
+            "(its film-content history is not yet carried); allowed: 'reynolds' or 'none' with a motion"
+        )
+    return problems

@@ -8,7 +8,10 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..output import SCALARS as CASE
+from lubecontact.io.case_schema import SCALARS as CASE
+from lubecontact.io.version import package_version
+from lubecontact.model.outputs import point_outputs
+from lubecontact.numerics.reynolds import boundary_flux, interior_nodes
 
 # name: (units, long_name), along ``time``; a quantity that means what it means in a case
 # takes the case's entry (output.SCALARS)
@@ -56,7 +59,6 @@ INSTANT = ("contact_resistance", "min_film_thickness", "central_film_thickness",
 
 def instant(model, state) -> dict:
     """The per-instant outputs of one level, as the steady solve reports them."""
-    from ..solver import point_outputs
 
     outputs, _ = point_outputs(model, state)
     return {"speed": model.scene.operating.speed, **{name: outputs[name] for name in INSTANT}}
@@ -66,13 +68,12 @@ def volume_balance(level) -> float:
     """Discrete mass balance of the full-film region at one level, from face fluxes
     (reynolds.boundary_flux, independent of the assembled matrix) and the squeeze rate:
     (net outflow + sum dA dh_T/dt) / (the larger of the wedge inlet flow and sum dA |dh_T/dt|)."""
-    from ..reynolds import _interior, boundary_flux
 
     state, model = level.state, level.model
     if state.reynolds is None or level.squeeze_rate is None:
         return 0.0
     mesh = model.mesh
-    full = _interior(mesh.shape, mesh.line) & ~state.reynolds.cavitated
+    full = interior_nodes(mesh.shape, mesh.line) & ~state.reynolds.cavitated
     squeeze = mesh.nodal_area * level.squeeze_rate
     outflow = boundary_flux(mesh, state.reynolds, state.expected_gap, state.flow_coefficient, model.scene.operating.speed,
                             state.faces)
@@ -118,14 +119,13 @@ def oscillation_metrics(time, resistance, period, cycles, threshold) -> tuple[fl
 def level_rows(levels) -> list[dict]:
     """The values of SERIES at each level."""
     return [instant(lv.model, lv.state) | {
-        "step_converged": int(lv.diagnostics["converged"]), "iterations": lv.diagnostics["iterations"],
+        "step_converged": int(lv.diagnostics.converged), "iterations": lv.diagnostics.iterations,
         "order": lv.order, "error_estimate": lv.error, "volume_balance": volume_balance(lv),
     } for lv in levels]
 
 
 def series_dataset(scene, times, rows, scalars: dict, notes: str, peaks=None) -> xr.Dataset:
     """The transient's Dataset: per-level variables (``rows``) along ``time`` and the run's scalars."""
-    from .. import __version__
 
     data = {}
     for name, (units, long_name) in SERIES.items():
@@ -148,7 +148,7 @@ def series_dataset(scene, times, rows, scalars: dict, notes: str, peaks=None) ->
         "Conventions": "CF-1.10",
         "scene": scene.canonical_yaml(),
         "scene_hash": scene.hash,
-        "lubecontact_version": __version__,
+        "lubecontact_version": package_version(),
         "notes": notes,
     }
     return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -1,0 +1,1 @@
+"""The ``lubecontact`` command (cli/main.py) and its ``transient`` subcommand."""

@@ -1,0 +1,222 @@
+"""Command line: ``lubecontact solve|sweep|transient|show|roughness``. Exit codes: 0 converged; 2 bad input
+(scene, option, --out path, a solve too big for this machine: nothing is solved or written);
+3 no converged result (not converged: the file is still written, with converged = 0; or
+the file could not be written); 130 interrupted (nothing written); 1 internal error (a bug:
+the traceback is saved to a file named in the message)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_NOT_CONVERGED, EXIT_OK
+
+# The commands' modules are imported where a command runs, not here: `lubecontact --help`
+# and `show` then start without scipy and xarray (0.4-0.6 s), and `solve` without xarray
+# (tests/test_startup.py).
+REPORT_TO = "the lubecontact maintainers (README.md, 'Reporting a bug')"
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="lubecontact", description=__doc__)
+    sub = p.add_subparsers(dest="command", required=True)
+
+    def scene_args(sp):
+        sp.add_argument("scene", help="scene YAML file (see config/scenes/table1.yaml)")
+        sp.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                        help="dotted override, e.g. roughness.sigma=1e-6 (repeatable)")
+
+    solve = sub.add_parser("solve", help="solve one operating point and write a netCDF case file")
+    scene_args(solve)
+    solve.add_argument("--fields", action="store_true", help="also write pressure, film and deformation fields")
+    solve.add_argument("--out", required=True, help="output netCDF file (new path or regular file; links are followed)")
+    solve.add_argument("--force-size", action="store_true", help="solve even if the memory estimate exceeds this machine's")
+
+    sweep = sub.add_parser("sweep", help="solve the scene over a list of speeds")
+    scene_args(sweep)
+    sweep.add_argument("--speeds", required=True,
+                       help="comma list in m/s (0.001,0.01,0.1) or log range START:STOP:N (1e-4:10:25)")
+    sweep.add_argument("--out", required=True, help="output netCDF file (new path or regular file; links are followed)")
+    sweep.add_argument("--force-size", action="store_true", help="solve even if the memory estimate exceeds this machine's")
+
+    transient = sub.add_parser("transient", help="follow the scene's motion: (stop, start, oscillation, table) in time")
+    scene_args(transient)
+    transient.add_argument("--out", required=True, help="output netCDF file (time series)")
+
+    show = sub.add_parser("show", help="validate a scene and print its canonical form and hash")
+    scene_args(show)
+
+    rough = sub.add_parser("roughness", help="McCool roughness parameters (sigma, eta, R_peak, alpha) of measured surfaces")
+    rough.add_argument("surfaces", nargs="+", metavar="SURFACE",
+                       help="instrument file (SurfaceTopography formats) or raw matrix (.txt/.npy with --size, --unit); "
+                            "two files: also their composite")
+    rough.add_argument("--size", nargs="+", type=float, metavar="L", help="raw matrix: LX [LY] in --unit")
+    rough.add_argument("--unit", choices=["m", "mm", "um", "nm"], help="raw matrix: unit of --size and of the heights")
+    rough.add_argument("--cutoff", type=float, metavar="LAMBDA_C",
+                       help="short-wavelength cut-off of m2, m4 in m (default: 4 sampling intervals)")
+    rough.add_argument("--periodic", action="store_true", help="raw matrix: the map wraps around (no window)")
+    rough.add_argument("--out", help="write a roughness: section (YAML) a scene can include")
+    return p
+
+
+def parse_speeds(text: str) -> list[float]:
+    """Speeds (m/s) from a comma list or a log range START:STOP:N; ValueError says what is allowed."""
+    import math
+
+    import numpy as np
+
+    allowed = "allowed: a comma list of finite speeds >= 0 m/s (0.001,0.01,0.1) or START:STOP:N with 0 < START, STOP finite and N >= 1 (1e-4:10:25)"
+    try:
+        if ":" in text:
+            start, stop, n = (float(v) for v in text.split(":"))
+            if not (math.isfinite(start) and math.isfinite(stop) and start > 0 and stop > 0 and n >= 1 and n.is_integer()):
+                raise ValueError("out of range")
+            return np.geomspace(start, stop, int(n)).tolist()
+        speeds = [float(v) for v in text.split(",") if v.strip()]
+        if not speeds or not all(math.isfinite(v) and v >= 0 for v in speeds):
+            raise ValueError("empty, not finite or negative")
+        return speeds
+    except ValueError as err:
+        raise ValueError(f"--speeds {text!r}: {err}; {allowed}") from None
+
+
+def _load(args):
+    from lubecontact.scene.scene import load_scene, parse_override
+
+    overrides = dict(parse_override(item) for item in args.overrides)
+    return load_scene(args.scene, overrides)
+
+
+_SHOWN = ("contact_resistance", "spot_resistance", "macro_constriction_resistance", "film_resistance",
+          "friction_coefficient", "contact_force", "fluid_force",
+          "min_film_thickness", "iterations", "force_residual", "solve_time")
+
+
+def _summary(effects_run: str, values) -> str:
+    """What the terminal shows of a case or a sweep; ``values[name]`` is an array (one value
+    a point) of each name in _SHOWN and of ``converged``."""
+    import numpy as np
+
+    from lubecontact.io.case_schema import SCALARS
+
+    lines = [f"effects run: {effects_run}"]
+    for name in _SHOWN:
+        flat = np.asarray(values[name]).ravel()
+        shown = f"{flat[0]:.6g}" if flat.size == 1 else f"{flat.min():.4g} .. {flat.max():.4g}"
+        lines.append(f"{name:>22s} = {shown} {SCALARS[name][0]}")
+    lines.append(f"{'converged':>22s} = {'yes' if _converged(values) else 'NO'}")
+    return "\n".join(lines)
+
+
+def _converged(values) -> bool:
+    import numpy as np
+
+    return int(np.asarray(values["converged"]).min()) == 1
+
+
+class _BadInput(Exception):
+    """An expected refusal before solving: exit 2 with the message."""
+
+
+def _checked(args, scene, points: int):
+    """The resolved --out path, after the path and size checks (nothing solved yet)."""
+    from lubecontact.io.output_path import OutputPathError, check_output_path
+    from lubecontact.model import resources
+
+    try:
+        out = check_output_path(args.out, inputs=[args.scene])
+    except OutputPathError as err:
+        raise _BadInput(str(err)) from None
+    est = resources.estimate(scene, points)
+    refusal = resources.too_big(est)
+    if refusal and not args.force_size:
+        raise _BadInput(refusal)
+    if est.seconds > resources.ANNOUNCE_SECONDS or refusal:
+        print(f"lubecontact: {est.describe()} (estimate)", file=sys.stderr)
+    return out, est
+
+
+def main(argv=None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        return _run(args)
+    except _BadInput as err:
+        print(f"lubecontact: bad input: {err}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("lubecontact: interrupted; nothing was written", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Exception as err:  # a bug: one line here, the traceback in a file
+        import tempfile
+        import traceback
+
+        fd, path = tempfile.mkstemp(prefix="lubecontact-crash-", suffix=".txt")
+        with open(fd, "w") as fh:
+            fh.write(f"lubecontact {' '.join(sys.argv[1:] if argv is None else argv)}\n")
+            traceback.print_exc(file=fh)
+        print(f"lubecontact: internal error ({type(err).__name__}: {err}); this is a bug, please report it "
+              f"to {REPORT_TO} with the traceback saved in {path}", file=sys.stderr)
+        return EXIT_INTERNAL
+
+
+def _run(args) -> int:
+    if args.command == "roughness":
+        from lubecontact.surfaces.report import run
+
+        return run(args)
+    from lubecontact.scene.scene import SceneError
+
+    try:
+        scene = _load(args)
+        speeds = parse_speeds(args.speeds) if args.command == "sweep" else None
+    except (SceneError, ValueError) as err:
+        print(f"lubecontact: bad input:\n{err}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    from lubecontact.model.validity import scene_warnings
+
+    for warning in scene_warnings(scene):
+        print(f"lubecontact: warning: {warning}", file=sys.stderr)
+    if args.command == "show":
+        if scene.motion.kind != "steady":  # what `lubecontact transient` would refuse of this scene
+            from lubecontact.unsteady.motion import motion_problems
+
+            for problem in motion_problems(scene):
+                print(f"lubecontact: warning: `lubecontact transient` refuses this scene: {problem}", file=sys.stderr)
+        print(f"# hash: {scene.hash}")
+        print(scene.canonical_yaml(), end="")
+        return EXIT_OK
+    from lubecontact.model.resources import elapsed_bar
+
+    out, est = _checked(args, scene, 1 if speeds is None else len(speeds))
+    if args.command == "solve":  # no xarray: the case is written with netCDF4 (case_result)
+        from lubecontact.model.solve import solve_case
+
+        with elapsed_bar(est):
+            result, _ = solve_case(scene, fields=args.fields)
+        write, effects_run, values = result.write, result.attrs["effects_run"], result.scalars
+    elif args.command == "transient":
+        from lubecontact.cli.transient import run_transient
+
+        return run_transient(scene, out)
+    else:
+        from lubecontact.io.case_schema import write_case
+        from lubecontact.studies.sweep import sweep
+
+        ds = sweep(scene, speeds)
+        write, effects_run = (lambda path: write_case(ds, path)), ds.attrs["effects_run"]
+        values = {name: ds[name].values for name in (*_SHOWN, "converged")}
+    try:
+        write(out)
+    except OSError as err:
+        print(f"lubecontact: could not write {args.out}: {err.strerror or err}; the result is lost", file=sys.stderr)
+        return EXIT_NOT_CONVERGED
+    print(_summary(effects_run, values))
+    print(f"wrote {args.out}")
+    if not _converged(values):
+        print("lubecontact: the solve did NOT converge (converged = 0 in the file)", file=sys.stderr)
+        return EXIT_NOT_CONVERGED
+    return EXIT_OK
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,39 @@
+"""``lubecontact transient SCENE --out SERIES.nc``: run, write, summarise (cli/exit_codes.py)."""
+
+from __future__ import annotations
+
+import sys
+
+from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK
+from lubecontact.io.case_schema import write_case
+from lubecontact.scene import SceneError
+from lubecontact.unsteady.transient import transient
+
+SUMMARY = ("reconnect_time", "rest_resistance", "open_fraction", "steps", "rejected_steps", "coupled_solves", "solve_time")
+
+
+def summary(ds) -> str:
+    r = ds["contact_resistance"].values
+    lines = [f"{'time':>22s} = 0 .. {ds['time'].values[-1]:.6g} s",
+             f"{'contact_resistance':>22s} = {r.min():.4g} .. {r.max():.4g} ohm"]
+    for name in SUMMARY:
+        var = ds[name]
+        units = "" if var.attrs["units"] == "1" else f" {var.attrs['units']}"
+        lines.append(f"{name:>22s} = {var.item():.6g}{units}")
+    lines.append(f"{'converged':>22s} = {'yes' if ds['converged'].item() == 1 else 'NO'}")
+    return "\n".join(lines)
+
+
+def run_transient(scene, out) -> int:
+    try:
+        ds = transient(scene)
+    except SceneError as err:
+        print(f"lubecontact: bad input:\n{err}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    write_case(ds, out)
+    print(summary(ds))
+    print(f"wrote {out}")
+    if ds["converged"].item() != 1:
+        print(f"lubecontact: the transient did NOT converge: {ds.attrs['notes']}", file=sys.stderr)
+        return EXIT_NOT_CONVERGED
+    return EXIT_OK

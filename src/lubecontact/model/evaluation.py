@@ -1,0 +1,87 @@
+"""One evaluation of the coupled model: pressures and forces at a cylinder position z and a
+deformation delta (Eqs. 1, 3-5, 11), and the load's gradient with respect to the film
+(contact law slope plus the Reynolds adjoint) that the force balance and the position
+predictor use.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import numpy as np
+
+from lubecontact.model.fluid_film import fluid_faces, fluid_film, fluid_slopes
+from lubecontact.model.model import Model, State
+from lubecontact.numerics.cavitation_jfo import solve_jfo
+from lubecontact.numerics.reynolds import solve_reynolds
+from lubecontact.physics.film_estimates import martin_film
+
+
+def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, reuse=None,
+             pressure_guess=None) -> State:
+    """Pressures and forces at cylinder position z with deformation delta (Eqs. 3-5, 11).
+    ``cavitated_guess`` and ``reuse`` (a previous ReynoldsSolution on this mesh) warm-start
+    the Reynolds solve (reynolds.solve_reynolds), or ``pressure_guess`` (a coarser mesh's
+    pressure interpolated to this one) a Reynolds-cavitation solve in their place."""
+    mesh, scene = model.mesh, model.scene
+    film = model.undeformed_gap + z + delta
+    area = mesh.nodal_area
+    contact_pressure, contact_slope = np.zeros(mesh.shape), None
+    if model.contact is not None:
+        contact_pressure, contact_slope = model.contact.pressure_and_slope(film)
+    fluid_pressure = np.zeros(mesh.shape)
+    h_t = k = reynolds = faces = face_slopes = None
+    if model.hydrodynamic:
+        h_t, k = fluid_film(model, film)
+        if scene.effects.cavitation == "jfo":  # mass-conserving cavitation (cavitation_jfo.py)
+            solve_fluid = solve_jfo
+        else:
+            solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds",
+                                  pressure_guess=pressure_guess)
+        faces, face_slopes = fluid_faces(model, film)
+        transient = {} if model.squeeze is None else {"squeeze_rate": model.squeeze.rate(h_t)}  # unsteady/
+        reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse,
+                               faces=faces, **transient)
+        fluid_pressure = reynolds.pressure
+    return State(
+        z=z,
+        delta=delta,
+        film=film,
+        contact_pressure=contact_pressure,
+        fluid_pressure=fluid_pressure,
+        expected_gap=h_t,
+        reynolds=reynolds,
+        contact_force=float(np.sum(contact_pressure * area)),
+        fluid_force=float(np.sum(fluid_pressure * area)),
+        contact_slope=contact_slope,
+        flow_coefficient=k,
+        faces=faces,
+        face_slopes=face_slopes,
+    )
+
+
+def film_scale(model: Model) -> float:
+    """A length on which the force changes appreciably: sigma, or a rigid Martin film."""
+    if model.contact is not None:
+        return model.contact.sigma
+    if model.squeeze is not None:
+        return model.squeeze.film_scale
+
+    return martin_film(model.scene)
+
+
+def force_gradient(model: Model, state: State) -> np.ndarray:
+    """dF/dh_j, N/m (ny, nx): how the carried load changes with the film at each node, at the
+    state's cavitated set: contact dp_c/dh times the nodal area plus the Reynolds adjoint
+    (the fluid solution's load_sensitivity, one back-substitution). Its sum is dF/dz (< 0)."""
+    gradient = np.zeros(model.mesh.shape)
+    if state.contact_slope is not None:
+        gradient += state.contact_slope * model.mesh.nodal_area
+    if state.reynolds is not None:
+        face_slopes, gap_slope, coefficient_slope = fluid_slopes(model, state)
+        squeeze = {} if model.squeeze is None else {"squeeze_slope": model.squeeze.coefficient * gap_slope}
+        if face_slopes is not None:  # rough surfaces: the film on the faces (percolation.py)
+            gap_slope, coefficient_slope = None, face_slopes
+        gradient += state.reynolds.load_sensitivity(model.mesh, gap_slope, coefficient_slope, model.scene.operating.speed,
+                                                    **squeeze)
+    return gradient

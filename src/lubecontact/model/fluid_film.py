@@ -1,0 +1,93 @@
+"""The film the fluid sees (Eqs. 1-2): the film content h_T and Poiseuille coefficient k at
+the nodes and on the faces, and their slopes for the linearised Reynolds residual.
+
+Rough surfaces use Patir-Cheng's expected gap and flow factor down to percolation
+(physics/flow_factors.py, physics/percolation.py, docs/physics.md sections 3 and 15);
+smooth surfaces h itself with k = h^3/(12 mu).
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import numpy as np
+
+from lubecontact.model.model import Model, State
+from lubecontact.physics.flow_factors import (
+    expected_gap_and_slope,
+    percolating_coefficient_and_slope,
+    poiseuille_coefficient_and_slope,
+)
+from lubecontact.physics.percolation import face_film
+from lubecontact.physics.shear_factors import couette_gap
+
+# Where the mean planes interpenetrate (h < 0) the fluid sees the gap frozen at its h = 0
+# value (h_T = sigma/sqrt(2 pi)). For the film content there is a physical reason: below the
+# percolation threshold of a Gaussian gap (h = 0, flow_factors.py) the lubricant sits in
+# closed pockets, incompressible, and is carried through the contact with the volume it was
+# sealed with, so its Couette content stops following h_T(h). The Poiseuille coefficient is
+# not floored: it follows the percolation law down to the threshold and leaks below it
+# (flow_factors.percolating_coefficient_and_slope), evaluated on the faces
+# (percolation.py), where it closes continuously. Friction does not use this floor
+# (friction.py: Patir-Cheng shear factors are finite for h <= 0).
+FLUID_FILM_FLOOR_SIGMAS = 0.0
+
+
+def content_law(model: Model):
+    """h -> (h_T, dh_T/dh): Patir-Cheng expected gap, or with flow factors between surfaces of
+    unequal roughness (roughness.split != 0.5) the Couette gap h_T + sigma phi_s of the shear
+    flow factor (shear_factors.couette_gap)."""
+
+    scene = model.scene
+    sigma = model.contact.sigma if model.contact is not None else None
+    if sigma is not None and scene.effects.flow_factors and scene.roughness.split != 0.5:
+
+
+        return partial(couette_gap, sigma=sigma, split=scene.roughness.split)
+    return lambda h: expected_gap_and_slope(h, sigma)
+
+
+def coefficient_law(model: Model):
+    """h -> (k, dk/dh): Patir-Cheng's Poiseuille coefficient down to percolation (rough
+    surfaces), or h^3/(12 mu) (smooth)."""
+
+    scene = model.scene
+    law = poiseuille_coefficient_and_slope if model.contact is None else percolating_coefficient_and_slope
+    sigma = None if model.contact is None else model.contact.sigma
+    return lambda h: law(h, sigma, scene.lubricant.viscosity, scene.effects.flow_factors)
+
+
+def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
+    """(h_T, k) at the nodes for the Reynolds equation (Eqs. 1-2; content_law and
+    coefficient_law, the content frozen below FLUID_FILM_FLOOR_SIGMAS); with ``slopes``
+    also their derivatives (dh_T/dh, dk/dh) for the adjoint (content slope 0 below the floor)."""
+    sigma = model.contact.sigma if model.contact is not None else None
+    k, dk = coefficient_law(model)(film)
+    held = np.zeros(film.shape, dtype=bool)
+    if sigma is not None:
+        held = film < FLUID_FILM_FLOOR_SIGMAS * sigma
+        film = np.maximum(film, FLUID_FILM_FLOOR_SIGMAS * sigma)
+    h_t, dh_t = content_law(model)(film)
+    if slopes:
+        return h_t, k, np.where(held, 0.0, dh_t), dk
+    return h_t, k
+
+
+def fluid_faces(model: Model, film: np.ndarray):
+    """(values, slopes) percolation.FaceFilm of the film on the faces (rough surfaces), or
+    (None, None) for smooth ones (nodal means, reynolds.py)."""
+    if model.contact is None:
+        return None, None
+
+    return face_film(film, coefficient_law(model), content_law(model))
+
+
+def fluid_slopes(model: Model, state: State):
+    """(face slopes, nodal dh_T/dh, nodal dk/dh) of the film the fluid saw at ``state``, for
+    the linearised Reynolds residual (force_gradient, newton.fluid_pressure_response): the
+    face slopes (percolation.FaceFilm; None for smooth surfaces) and the nodal slopes of
+    fluid_film where they are used (smooth faces, a transient's squeeze term), else None."""
+    if state.face_slopes is not None and model.squeeze is None:
+        return state.face_slopes, None, None
+    _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
+    return state.face_slopes, gap_slope, coefficient_slope

@@ -1,0 +1,121 @@
+"""The coupled model of one operating point and its state (paper section 2.5, Eqs. 3-4).
+
+``Model`` holds the sub-models a scene calls for, built once (disabled effects are None or
+False: a switched-off effect costs nothing); ``State`` is everything at one cylinder
+position z and deformation delta; ``SolveError`` carries the last state of a failed force
+balance so that a failure is reported with what was computed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from lubecontact.model.contact_tables import contact_table
+from lubecontact.numerics.mesh import Mesh, build_mesh
+from lubecontact.numerics.transfer import coarser_mesh
+from lubecontact.physics.deformation import ElasticDeformation
+from lubecontact.physics.materials import effective_modulus
+
+
+class SolveError(RuntimeError):
+    """The force balance failed; ``state`` is the last state evaluated (or None). A solve
+    reports it as ``converged = 0`` with the message in the case notes, never swallowed."""
+
+    def __init__(self, message: str, state=None):
+        super().__init__(message)
+        self.state = state
+
+
+@dataclass
+class Model:
+    """The sub-models a scene calls for, built once (disabled effects are None / False)."""
+
+    scene: object
+    mesh: Mesh
+    undeformed_gap: np.ndarray  # h_o of Eq. (4), (ny, nx)
+    contact: object | None  # RoughContact when effects.asperity_contact
+    deformation: object | None  # ElasticDeformation when effects.elastic_deformation
+    hydrodynamic: bool  # Reynolds solved (effect on and speed > 0)
+    # A transient step's time derivative of h_T (unsteady.integrator.Squeeze: rate(h_T) m/s,
+    # coefficient = d rate/d h_T 1/s, film_scale m), None for a steady solve
+    squeeze: object | None = None
+
+    @classmethod
+    def assemble(cls, scene, mesh: Mesh | None = None, contact=None) -> "Model":
+        """The model of ``scene`` on its mesh (or on ``mesh``, same domain), reusing the
+        rough-contact tables ``contact`` of the same scene when given."""
+        effects = scene.effects
+        mesh = build_mesh(scene) if mesh is None else mesh
+        radius = scene.geometry.radius
+        gap_x = radius - np.sqrt(radius**2 - mesh.x**2)  # Eq. (4)
+        undeformed = np.broadcast_to(gap_x, mesh.shape).copy()
+        if not effects.asperity_contact:
+            contact = None
+        elif contact is None:
+
+            contact = contact_table(scene)  # built once per roughness/materials, not per solve
+        deformation = None
+        if effects.elastic_deformation:
+
+            deformation = ElasticDeformation(mesh, effective_modulus(scene))
+        hydrodynamic = bool(effects.hydrodynamics) and scene.operating.speed > 0.0
+        return cls(scene, mesh, undeformed, contact, deformation, hydrodynamic)
+
+    def coarsened(self, coarsest: int) -> "Model | None":
+        """The same model on the mesh with every other node (same domain) in each direction
+        longer than ``coarsest`` nodes; None when there is none, or for a transient step
+        (its squeeze history lives on this mesh; it starts from the previous step)."""
+
+        if self.squeeze is not None:
+            return None
+
+        coarse = coarser_mesh(self.mesh, coarsest)
+        return None if coarse is None else Model.assemble(self.scene, coarse, self.contact)
+
+    @property
+    def effects_run(self) -> dict:
+        e = self.scene.effects
+        return {
+            "hydrodynamics": self.hydrodynamic,
+            "flow_factors": self.hydrodynamic and self.contact is not None and e.flow_factors,
+            "cavitation": self.hydrodynamic and e.cavitation != "none",
+            "asperity_contact": self.contact is not None,
+            "plasticity": self.contact is not None and e.plasticity,
+            "elastic_deformation": self.deformation is not None,
+            "alleviation": self.contact is not None and e.alleviation and not e.macro_constriction,
+            "macro_constriction": e.macro_constriction,
+            "film_conduction": e.film_conduction,
+            "tunnelling": e.tunnelling,
+        }
+
+
+@dataclass
+class State:
+    """Everything at one (z, delta)."""
+
+    z: float
+    delta: np.ndarray
+    film: np.ndarray  # h, (ny, nx)
+    contact_pressure: np.ndarray
+    fluid_pressure: np.ndarray
+    expected_gap: np.ndarray | None  # h_T used by the fluid
+    reynolds: object | None  # ReynoldsSolution
+    contact_force: float
+    fluid_force: float
+    contact_slope: np.ndarray | None = None  # dp_c/dh (Pa/m) of the contact law, <= 0
+    flow_coefficient: np.ndarray | None = None  # k used by the fluid, m^3/(Pa s)
+    load_gradient: np.ndarray | None = None  # dF/dh_j (N/m), set by balance_force
+    # the film on the faces (rough surfaces, percolation.FaceFilm) and its slopes d/dh_f, as
+    # the fluid used them (fluid_faces), else None
+    faces: object | None = None
+    face_slopes: object | None = None
+
+    @property
+    def total_force(self) -> float:
+        return self.contact_force + self.fluid_force
+
+    @property
+    def total_pressure(self) -> np.ndarray:
+        return self.contact_pressure + self.fluid_pressure

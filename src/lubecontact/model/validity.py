@@ -1,0 +1,105 @@
+"""Where a case leaves the ground its sub-models stand on (DESIGN.md Part II "Validity").
+
+A solved case is checked against the range of each sub-model it used; every breach is a
+flag (its name in the case's ``validity`` attribute, ``valid`` = 0) and a note with the
+numbers. Nothing is silent, nothing is refused: the paper's own figures leave several of
+these grounds at low speed (physics.md sections 9 and 11.6).
+
+Flags:
+
+- ``gw_area``: A_r/A_n above GW_MAX_AREA_FRACTION somewhere. Greenwood-Williamson's
+  statistics (and Jackson-Green's asperities in them) treat the asperities as independent;
+  their interaction grows with the contact fraction, and the light-contact regime the
+  model was built for is usually bounded at about a tenth of the nominal area.
+- ``area_capped``: A_r/A_n > 1 at some node (the statistical integral passes the nominal
+  area at deep interference); ``real_contact_area`` counts such nodes as fully in contact.
+- ``bulk_yield``: peak nominal pressure (fluid + asperities) above the onset of yield
+  under a Hertzian line load, p0 = 1.67 S_y (von Mises, Johnson 1985 section 4.2), with
+  S_y of the softer body: the bodies are modelled elastic on the macro scale.
+- ``bandwidth``: Nayak's bandwidth alpha < 2. For a Gaussian isotropic surface
+  eta R_peak sigma = 0.020358 sqrt(alpha) (McCool 1986; physics.md section 18), so the
+  scene's eta, R_peak, sigma imply alpha; below 2 the summit statistics of GW have no
+  surface behind them (the CLI warns on loading such a scene: ``scene_warnings``).
+- ``flow_factor_range``: h/sigma < 0.5 where the fluid is pressurised: Patir-Cheng's flow
+  factors (Eq. 2) are fitted for h/sigma > 0.5.
+- ``inlet``: the inlet is too short for the film: a rigid cylinder's film with the inlet at
+  X = x_min / sqrt(2 R h) is INLET_FILM_DEFICIT or more below the fully flooded one
+  (:func:`lubecontact.physics.inlet.inlet_film_fraction`, h the thinnest fluid gap).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from lubecontact.physics.inlet import inlet_film_fraction
+
+GW_MAX_AREA_FRACTION = 0.1
+LINE_YIELD_ONSET = 1.67  # p0/S_y at first yield under a Hertzian line load (von Mises, nu = 0.3)
+BANDWIDTH_CONSTANT = 0.020358  # eta R_peak sigma / sqrt(alpha), Gaussian isotropic surface
+MIN_BANDWIDTH = 2.0
+MIN_FLOW_FACTOR_FILM = 0.5  # h/sigma where Patir-Cheng's fits begin
+INLET_FILM_DEFICIT = 0.01
+
+
+def bandwidth(roughness) -> float:
+    """Nayak's alpha implied by eta R_peak sigma = 0.020358 sqrt(alpha)."""
+    return (roughness.asperity_density * roughness.asperity_radius * roughness.sigma / BANDWIDTH_CONSTANT) ** 2
+
+
+def bandwidth_note(roughness) -> str | None:
+    """The statement about alpha < 2, naming the keys, or None."""
+    alpha = bandwidth(roughness)
+    if alpha >= MIN_BANDWIDTH:
+        return None
+    return (f"roughness.sigma = {roughness.sigma:g} m with roughness.asperity_density = "
+            f"{roughness.asperity_density:g} 1/m^2 and roughness.asperity_radius = {roughness.asperity_radius:g} m: "
+            f"eta R sigma = {roughness.asperity_density * roughness.asperity_radius * roughness.sigma:.3g} implies "
+            f"bandwidth alpha = {alpha:.3g} < {MIN_BANDWIDTH:g} (eta R sigma = 0.020358 sqrt(alpha)): no Gaussian "
+            f"surface has these summits; GW statistics are outside their ground")
+
+
+def scene_warnings(scene) -> list[str]:
+    """What is wrong with a valid scene without making it unusable (printed by the CLI)."""
+    return [note for note in (bandwidth_note(scene.roughness),) if note]
+
+
+def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
+    """flag -> note for every ground the solved ``state`` leaves (empty when none)."""
+    flags = {}
+    note = bandwidth_note(scene.roughness) if contact is not None else None
+    if note:
+        flags["bandwidth"] = note
+    if contact is not None:
+        fraction = contact.area_fraction(state.film)
+        peak = float(fraction.max())
+        if peak > GW_MAX_AREA_FRACTION:
+            flags["gw_area"] = (f"A_r/A_n up to {peak:.3g} > {GW_MAX_AREA_FRACTION:g}: beyond the light contact "
+                                f"of independent asperities (GW)")
+        if peak > 1.0:
+            flags["area_capped"] = (f"A_r/A_n > 1 at {int((fraction > 1.0).sum())} nodes (up to {peak:.3g}): "
+                                    f"counted as full contact in real_contact_area")
+    yield_strength = min(scene.cylinder.yield_strength, scene.block.yield_strength)
+    pressure = float(np.max(state.contact_pressure + state.fluid_pressure))
+    if pressure > LINE_YIELD_ONSET * yield_strength:
+        flags["bulk_yield"] = (f"peak nominal pressure {pressure:.3g} Pa > {LINE_YIELD_ONSET:g} S_y = "
+                               f"{LINE_YIELD_ONSET * yield_strength:.3g} Pa: onset of bulk yield, the bodies are "
+                               f"modelled elastic")
+    if hydrodynamic and contact is not None and scene.effects.flow_factors:
+        wet = state.fluid_pressure > 0.0
+        if wet.any():
+            lowest = float(np.min(state.film[wet])) / contact.sigma
+            if lowest < MIN_FLOW_FACTOR_FILM:
+                flags["flow_factor_range"] = (f"h/sigma down to {lowest:.3g} < {MIN_FLOW_FACTOR_FILM:g} where the "
+                                              f"fluid is pressurised: Patir-Cheng flow factors are extrapolated")
+    if hydrodynamic:
+
+        gap = state.expected_gap if state.expected_gap is not None else state.film
+        thinnest = float(np.min(gap))
+        inlet = abs(float(mesh.x[0])) / math.sqrt(2.0 * scene.geometry.radius * thinnest)
+        fraction = inlet_film_fraction(inlet)
+        if 1.0 - fraction >= INLET_FILM_DEFICIT:
+            flags["inlet"] = (f"inlet at X = x_min/sqrt(2 R h) = {inlet:.3g} (h = {thinnest:.3g} m): a rigid film "
+                              f"would be {fraction:.3g} of the fully flooded one; lengthen the domain (mesh.x_min)")
+    return flags

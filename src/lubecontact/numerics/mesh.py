@@ -1,0 +1,165 @@
+"""The computational mesh shared by the Reynolds, contact and deformation sub-models.
+
+Paper, section 2.6: the same nodal grid carries the fluid pressure (Eq. 1) and the
+rough-surface contact (Eq. 11). Nodes span [x_min, x_max] x [-L/2, L/2] with the
+boundary nodes included; x is the sliding direction (inlet at x_min), y the cylinder axis.
+``ny == 1`` is line-contact mode: one row of nodes, no side leakage, loads per unit length
+times the cylinder length L.
+
+Automatic domain (``x_min``/``x_max`` = auto): the length scale
+``s = max(2 b_H, sqrt(2 R * 10 sigma))`` covers the Hertz width b_H (Johnson, E*) and the
+inlet/outlet zone where the undeformed gap (Eq. 4) is below ten roughness heights, the
+film a fluid can build. The domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the
+fluid pressure builds, than downstream, where it cavitates.
+
+The inlet follows the film (physics.md section 17): a film h fed from an inlet that ends at
+X = x_min/sqrt(2 R h) is short of the fully flooded one by ~2.5/X^2 (lubecontact.physics.inlet),
+and the resistance is exponential in the film. So the automatic inlet reaches at least
+INLET_FILM_LENGTHS x sqrt(2 R h_M), h_M Martin's rigid film of the scene's speed (thicker
+than the elastic film at high speed, thinner below ~1 m/s, where the rough-contact scale
+s governs anyway), by whole cells of the ``[-3.5 s, 1.5 s]`` mesh added upstream: the node
+spacing, and every node of the slow cases, stay those of ``mesh.nx`` over that domain, and
+the mesh has ``nodes_x(scene)`` >= nx nodes along x. Each speed thus has its own inlet
+(cases of a sweep differ in their inlet, not in their spacing); the inlet stops at
+MAX_DOMAIN_RADII x R (Eq. 4 needs |x| < R), where the validity flag ``inlet`` reports a
+film still short of its flooded value.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from lubecontact.physics.film_estimates import hertz_half_width, martin_film
+
+UPSTREAM_LENGTHS = 3.5
+DOWNSTREAM_LENGTHS = 1.5
+MIN_INTERVALS_ACROSS_CONTACT = 2.0
+INLET_FILM_LENGTHS = 20.0  # automatic inlet >= this many sqrt(2 R h_M) upstream of x = 0
+MAX_DOMAIN_RADII = 0.9  # the automatic inlet never reaches beyond this fraction of R
+
+
+def contact_width_estimate(scene) -> float:
+    """Width in x over which solid contact is expected: the larger of the Hertz width 2 b_H
+    and the width where the undeformed gap x^2/2R stays below 3 sigma (rough contact
+    spreads the load beyond Hertz)."""
+    r, sigma = scene.geometry.radius, scene.roughness.sigma
+    return 2.0 * max(hertz_half_width(scene), float(np.sqrt(6.0 * r * sigma)))
+
+
+def auto_length_scale(scene) -> float:
+    r, sigma = scene.geometry.radius, scene.roughness.sigma
+    return max(2.0 * hertz_half_width(scene), float(np.sqrt(2.0 * r * 10.0 * sigma)))
+
+
+def film_inlet_length(scene) -> float:
+    """Inlet length (m) the film of the scene's speed needs: INLET_FILM_LENGTHS sqrt(2 R h_M)
+    (0 without a fluid)."""
+    if not scene.effects.hydrodynamics or scene.operating.speed == 0.0:
+        return 0.0
+
+    return INLET_FILM_LENGTHS * float(np.sqrt(2.0 * scene.geometry.radius * martin_film(scene)))
+
+
+def _inlet_cells(scene) -> tuple[float, float, int]:
+    """(x_min, x_max, cells added upstream) of the domain before the cells are added."""
+    s = auto_length_scale(scene)
+    x_min = -UPSTREAM_LENGTHS * s if scene.mesh.x_min is None else float(scene.mesh.x_min)
+    x_max = DOWNSTREAM_LENGTHS * s if scene.mesh.x_max is None else float(scene.mesh.x_max)
+    if scene.mesh.x_min is not None or not x_max > x_min:
+        return x_min, x_max, 0
+    spacing = (x_max - x_min) / (scene.mesh.nx - 1)
+    inlet = min(film_inlet_length(scene), MAX_DOMAIN_RADII * scene.geometry.radius)
+    return x_min, x_max, max(0, int(np.ceil((inlet + x_min) / spacing - 1e-9)))
+
+
+def nodes_x(scene) -> int:
+    """Nodes along x: mesh.nx plus the cells the automatic inlet adds for the film."""
+    return scene.mesh.nx + _inlet_cells(scene)[2]
+
+
+def domain_x(scene) -> tuple[float, float]:
+    """(x_min, x_max) in m: the scene's values, or the automatic domain where they are None."""
+    x_min, x_max, cells = _inlet_cells(scene)
+    return x_min - cells * (x_max - x_min) / (scene.mesh.nx - 1), x_max
+
+
+def mesh_problems(scene) -> list[str]:
+    """Reasons the scene's mesh cannot resolve the problem (empty when fine)."""
+    problems = []
+    x_min, x_max = domain_x(scene)
+    if not x_max > x_min:
+        problems.append(f"mesh.x_max ({x_max:g} m) must be greater than mesh.x_min ({x_min:g} m)")
+        return problems
+    if scene.geometry.radius <= max(abs(x_min), abs(x_max)):
+        problems.append(
+            f"mesh domain [{x_min:g}, {x_max:g}] m reaches beyond the cylinder radius "
+            f"{scene.geometry.radius:g} m (Eq. 4 needs |x| < R)"
+        )
+    dx = (x_max - x_min) / (nodes_x(scene) - 1)
+    width = contact_width_estimate(scene)
+    if dx * MIN_INTERVALS_ACROSS_CONTACT > width:
+        base_min = _inlet_cells(scene)[0]  # mesh.nx spans the domain before the film's inlet cells
+        needed = int(np.ceil(MIN_INTERVALS_ACROSS_CONTACT * (x_max - base_min) / width)) + 1
+        problems.append(
+            f"mesh.nx = {scene.mesh.nx} is too coarse: node spacing {dx:.3g} m against an expected "
+            f"contact width of {width:.3g} m; use mesh.nx >= {needed} (or a smaller domain)"
+        )
+    return problems
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """Node coordinates and trapezoidal nodal areas of the shared grid."""
+
+    x: np.ndarray  # (nx,) m
+    y: np.ndarray  # (ny,) m; [0.0] in line mode
+    length: float  # cylinder length L, m
+
+    @property
+    def nx(self) -> int:
+        return self.x.size
+
+    @property
+    def ny(self) -> int:
+        return self.y.size
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return (self.ny, self.nx)
+
+    @property
+    def line(self) -> bool:
+        """Line-contact mode: one row of nodes standing for the whole length L."""
+        return self.ny == 1
+
+    @property
+    def dx(self) -> float:
+        return float(self.x[1] - self.x[0])
+
+    @property
+    def dy(self) -> float:
+        """Node spacing in y; the cylinder length L in line mode."""
+        return self.length if self.line else float(self.y[1] - self.y[0])
+
+    @cached_property
+    def nodal_area(self) -> np.ndarray:
+        """(ny, nx) trapezoidal weights in m^2: sum(p * nodal_area) integrates p over the domain."""
+        wx = np.full(self.nx, self.dx)
+        wx[[0, -1]] *= 0.5
+        if self.line:
+            wy = np.array([self.length])
+        else:
+            wy = np.full(self.ny, self.dy)
+            wy[[0, -1]] *= 0.5
+        return np.outer(wy, wx)
+
+
+def build_mesh(scene) -> Mesh:
+    x_min, x_max = domain_x(scene)
+    x = np.linspace(x_min, x_max, nodes_x(scene))
+    half = 0.5 * scene.geometry.length
+    y = np.zeros(1) if scene.mesh.ny == 1 else np.linspace(-half, half, scene.mesh.ny)
+    return Mesh(x=x, y=y, length=scene.geometry.length)

@@ -1,0 +1,98 @@
+"""Closed-form film and contact estimates of a smooth or rough cylinder (docs/physics.md
+sections 4-6): Martin's rigid film, the isoviscous-elastic film of Hamrock and Moes, the
+Hertz line contact (half-width, approach, deflection scale), and the 1-D Reynolds line
+load with the Reynolds exit condition. Used to size the mesh, to decide effects and to
+judge the inlet.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from lubecontact.physics.materials import effective_modulus
+
+MARTIN = 4.9  # Martin (1916) with the Reynolds exit condition: w' h0 / (mu u_m R) (4.895)
+
+# Hamrock's isoviscous-elastic line-contact film beyond the reference table: H_min = 3.10 g_E^0.8
+HAMROCK_COEFFICIENT, HAMROCK_EXPONENT = 3.10, 0.8
+
+
+MARTIN_FRICTION = 7.283  # its Couette friction on the plane over the full film: F' / (mu u_m sqrt(2R/h0))
+
+
+# physics.md section 5: H_min = (h_min/R)(W'/U') of the isoviscous-elastic line contact
+# (team reference solver, Reynolds condition), -> 3.10 g_E^0.8 (Hamrock) for g_E >= 20.
+EI_G = np.array([0.324, 0.5, 0.75, 1.03, 2.0, 3.24, 5.0, 10.0, 20.0, 50.0])
+
+
+EI_H = np.array([4.97, 5.08, 5.28, 5.59, 7.08, 9.35, 12.5, 20.5, 34.6, 70.7])
+
+
+def _cumulative_trapezoid(y: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """scipy.integrate.cumulative_trapezoid(y, x, initial=0.0) of 1-D arrays, the same
+    operations (numpy only: importing scipy.integrate costs ~0.1 s at start-up)."""
+    return np.concatenate([[0.0], np.cumsum(np.diff(x) * (y[1:] + y[:-1]) / 2.0)])
+
+
+def reynolds_line_load(x, expected_gap, coefficient, speed: float) -> float:
+    """Fluid load per unit length (N/m) of the 1D Reynolds equation (Eq. 1, no side leakage)
+    d/dx(k dp/dx) = (U/2) dh_T/dx with p = 0 at the inlet x[0] and the Reynolds exit
+    condition p = dp/dx = 0 (or p = 0 at x[-1] if the film does not rupture before).
+
+    With the flux q: p(x) = int (U h_T/2 - q)/k dx; the exit x_e is the first root of
+    G(x) = int (U h_T/2)/k - (U h_T(x)/2) int 1/k after the narrowest gap, q = U h_T(x_e)/2
+    (h_T(x_e) interpolated linearly between the nodes around the root).
+    """
+    a = _cumulative_trapezoid(0.5 * speed * expected_gap / coefficient, x)
+    b = _cumulative_trapezoid(1.0 / coefficient, x)
+    narrowest = int(np.argmin(expected_gap))
+    g = a - 0.5 * speed * expected_gap * b
+    ruptured = np.flatnonzero(g[narrowest:] <= 0.0)
+    if ruptured.size:
+        exit_ = narrowest + int(ruptured[0])
+        before = max(exit_ - 1, 0)  # the root of g lies between these nodes: interpolate h_T*
+        weight = g[before] / (g[before] - g[exit_]) if g[before] > g[exit_] else 1.0
+        flux = 0.5 * speed * (expected_gap[before] + weight * (expected_gap[exit_] - expected_gap[before]))
+        p = np.where(np.arange(x.size) < exit_, a - flux * b, 0.0)
+    else:
+        p = a - (a[-1] / b[-1]) * b
+    return float(np.trapezoid(np.maximum(p, 0.0), x))
+
+
+def martin_film(scene) -> float:
+    """Rigid infinite-cylinder film h_0 = 4.9 mu (U/2) R L / F, m (Martin 1916; physics.md 4)."""
+    s = scene
+    return MARTIN * s.lubricant.viscosity * 0.5 * s.operating.speed * s.geometry.radius * s.geometry.length / s.operating.force
+
+
+def elastic_film_factor(g_e: float) -> float:
+    """H_min(g_E)/4.9: isoviscous-elastic over rigid line-contact film (physics.md section 5).
+
+    Interpolated (log-log) in the reference table, Hamrock's 3.10 g_E^0.8 beyond g_E = 50,
+    and the table's first value (1.4 % above rigid) below g_E = 0.324.
+    """
+    if g_e > EI_G[-1]:
+        h = HAMROCK_COEFFICIENT * g_e**HAMROCK_EXPONENT
+    else:
+        h = math.exp(np.interp(math.log(max(g_e, EI_G[0])), np.log(EI_G), np.log(EI_H)))
+    return h / MARTIN
+
+
+def deflection_scale(scene) -> float:
+    """delta_w = 2 w'/(pi E*), m: the deflection per unit log distance of a line load
+    (Johnson 1985, eq. 2.25), the scale on which the film is deformed."""
+    return 2.0 * scene.operating.force / scene.geometry.length / (math.pi * effective_modulus(scene))
+
+
+def hertz_approach(scene) -> float:
+    """Approach of a Hertzian strip of length L, (2 w'/(pi E*))(ln(2L/b) + 1/2), m
+    (physics.md section 6; the datum of lubecontact.physics.deformation's line mode)."""
+    return deflection_scale(scene) * (math.log(2.0 * scene.geometry.length / hertz_half_width(scene)) + 0.5)
+
+
+def hertz_half_width(scene) -> float:
+    """Hertz line-contact half-width b = sqrt(4 w' R / (pi E*)), w' = F/L (Johnson 4.43)."""
+    load_per_length = scene.operating.force / scene.geometry.length
+    return float(np.sqrt(4.0 * load_per_length * scene.geometry.radius / (np.pi * effective_modulus(scene))))

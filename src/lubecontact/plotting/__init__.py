@@ -1,0 +1,1 @@
+"""Figures drawn from collected Datasets and case files (matplotlib's object API)."""

@@ -1,0 +1,769 @@
+"""Scenes: the validated, frozen description of one physical problem (DESIGN.md "Scene schema").
+
+A scene is read from YAML (or a mapping), completed with the paper's Table 1 defaults,
+checked, and frozen. SI units throughout. Each section is a frozen dataclass whose fields
+carry their own rule (type, allowed range, unit), so this module's schema is the table
+of fields below; ``load_scene`` only walks it.
+
+Table 1 of Jackson & Angadi (2022): R = 0.01 m, Width = 0.001 m, sigma = 0.5 um,
+eta = 1e9 1/m^2, R_peak = 100 um, E = 41.4 GPa, S_y = 14 MPa, nu = 0.36, mu = 0.1 Pa s,
+rho = 1.15e-7 Ohm m, both bodies tin. The paper gives no boundary friction coefficient
+(0.1 is our choice), nor force and speed beyond its figures (5 N, 0.1 m/s here).
+
+Everything that is wrong with an input is reported at once in one ``SceneError``, one
+problem per line, each naming the dotted key, the value given and what is allowed.
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import math
+import numbers
+import os
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields, replace
+from functools import cache, cached_property
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+from lubecontact.numerics.mesh import mesh_problems
+
+AUTO = "auto"
+# The YAML emitter of the canonical text (Scene.canonical_yaml): libyaml's where PyYAML has
+# it (PyPI's wheels do), which writes the same text faster.
+_SAFE_DUMPER = getattr(yaml, "CSafeDumper", yaml.SafeDumper)
+
+# McCool (1986): sigma_s^2 = sigma^2 - 3.717e-4/(eta R_peak)^2 (physics.md section 2).
+MCCOOL_VARIANCE_CONSTANT = 3.717e-4
+# Keys a measured surface (roughness.surface) sets; a scene with a surface must not set them.
+SURFACE_SETS = ("sigma", "asperity_density", "asperity_radius")
+
+
+class SceneError(ValueError):
+    """An unusable scene. ``problems`` holds one message per problem (also the lines of str())."""
+
+    def __init__(self, origin: str, problems: list[str]):
+        self.origin = origin
+        self.problems = list(problems)
+        super().__init__(f"invalid scene ({origin}):\n" + "\n".join(f"  {p}" for p in self.problems))
+
+    def __reduce__(self):  # picklable across worker processes
+        return type(self), (self.origin, self.problems)
+
+
+# --- rules: convert one raw value or say why not -------------------------------------------
+
+
+class _Invalid(Exception):
+    """Raised by a rule; the message is the reason (the caller adds key, value and allowed)."""
+
+
+_NUMBER = re.compile(r"[+-]?((0|[1-9]\d*)(\.\d*)?|\.\d+)([eE][+-]?\d+)?")  # decimal: 010 is refused
+
+
+def _as_real(value) -> float:
+    """A finite float from a number or a numeric string (PyYAML reads ``1e-6`` as a string)."""
+    if isinstance(value, bool):
+        raise _Invalid("a boolean, not a number")
+    if isinstance(value, numbers.Real):
+        x = float(value)
+    elif isinstance(value, str) and _NUMBER.fullmatch(value.strip()):
+        x = float(value)
+    else:
+        raise _Invalid("not a number")
+    if not math.isfinite(x):
+        raise _Invalid("not finite")
+    return x
+
+
+@dataclass(frozen=True)
+class _Real:
+    """A finite number with optional open or closed bounds."""
+
+    unit: str
+    low: float | None = None
+    low_open: bool = True
+    high: float | None = None
+    high_open: bool = True
+
+    @property
+    def allowed(self) -> str:
+        lo, hi = self.low, self.high
+        if lo is not None and hi is not None:
+            span = f"in {'(' if self.low_open else '['}{lo:g}, {hi:g}{')' if self.high_open else ']'}"
+        elif lo is not None:
+            span = f"{'>' if self.low_open else '>='} {lo:g}"
+        elif hi is not None:
+            span = f"{'<' if self.high_open else '<='} {hi:g}"
+        else:
+            span = ""
+        unit = f"({self.unit})" if self.unit != "1" else ""
+        return " ".join(filter(None, ["a finite number", span, unit]))
+
+    def __call__(self, value) -> float:
+        x = _as_real(value)
+        below = self.low is not None and (x <= self.low if self.low_open else x < self.low)
+        above = self.high is not None and (x >= self.high if self.high_open else x > self.high)
+        if below or above:
+            raise _Invalid("out of range")
+        return x
+
+    def dump(self, value):
+        return value
+
+
+@dataclass(frozen=True)
+class _Integer:
+    """An integer >= minimum, or one of ``also``; whole floats (51.0, "5.1e1") are accepted."""
+
+    minimum: int
+    also: tuple[int, ...] = ()
+
+    @property
+    def allowed(self) -> str:
+        extra = "".join(f"equal to {n} or " for n in self.also)
+        return f"an integer {extra}>= {self.minimum}"
+
+    def __call__(self, value) -> int:
+        if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+            n = int(value)
+        else:
+            x = _as_real(value)
+            if not x.is_integer():
+                raise _Invalid("not a whole number")
+            n = int(x)
+        if n < self.minimum and n not in self.also:
+            raise _Invalid("out of range")
+        return n
+
+    def dump(self, value):
+        return value
+
+
+@dataclass(frozen=True)
+class _Flag:
+    """A YAML boolean (true/false); 1/0 and strings are refused."""
+
+    allowed = "true or false"
+
+    def __call__(self, value) -> bool:
+        if not isinstance(value, bool):
+            raise _Invalid("not a boolean")
+        return value
+
+    def dump(self, value):
+        return value
+
+
+@dataclass(frozen=True)
+class _Choice:
+    options: tuple[str, ...]
+
+    @property
+    def allowed(self) -> str:
+        return "one of " + ", ".join(repr(o) for o in self.options)
+
+    def __call__(self, value) -> str:
+        if value in self.options:
+            return value
+        close = difflib.get_close_matches(str(value), self.options, n=1)
+        raise _Invalid(f"unknown option (did you mean {close[0]!r}?)" if close else "unknown option")
+
+    def dump(self, value):
+        return value
+
+
+@dataclass(frozen=True)
+class _FlagOrChoice:
+    """One of ``options``; ``true``/``false`` (the older boolean form) stand for
+    ``options[0]``/``options[-1]``, and those two are written back as true/false, so that a
+    scene's canonical form (and hash) is what it was before the choice had more options."""
+
+    options: tuple[str, ...]
+
+    @property
+    def allowed(self) -> str:
+        return "true, false or " + _Choice(self.options).allowed
+
+    def __call__(self, value) -> str:
+        if isinstance(value, bool):
+            return self.options[0] if value else self.options[-1]
+        return _Choice(self.options)(value)
+
+    def dump(self, value):
+        return {self.options[0]: True, self.options[-1]: False}.get(value, value)
+
+
+@dataclass(frozen=True)
+class _AutoOr:
+    """'auto' (stored as None: the code chooses) or a value of the inner rule."""
+
+    inner: _Real
+
+    @property
+    def allowed(self) -> str:
+        return f"{AUTO!r} or {self.inner.allowed}"
+
+    def __call__(self, value):
+        return None if value is None or value == AUTO else self.inner(value)
+
+    def dump(self, value):
+        return AUTO if value is None else value
+
+
+@dataclass(frozen=True)
+class _OptionalPath:
+    """A file path (text), or none."""
+
+    allowed = "a file path (text) or none"
+
+    def __call__(self, value):
+        if value is None or value == "none":
+            return None
+        if not isinstance(value, str) or not value.strip():
+            raise _Invalid("not a file path")
+        return value
+
+    def dump(self, value):
+        return value
+
+
+def _field(default, rule, doc: str):
+    """A schema entry: default (Table 1), rule (type and range), doc (meaning, paper symbol)."""
+    return field(default=default, metadata={"rule": rule, "doc": doc})
+
+
+def _positive(unit):
+    return _Real(unit, low=0.0)
+
+
+def _nonnegative(unit):
+    return _Real(unit, low=0.0, low_open=False)
+
+
+class _Section:
+    """Shared behaviour of the scene's sections."""
+
+    @classmethod
+    @cache
+    def rules(cls) -> tuple[tuple[str, object], ...]:
+        """(key, rule) of the section's scene keys (fields with a rule), in schema order;
+        looked up once per section (planning the default workflow builds 1421 scenes)."""
+        return tuple((f.name, f.metadata["rule"]) for f in fields(cls) if "rule" in f.metadata)
+
+    @classmethod
+    @cache
+    def keys(cls) -> tuple[str, ...]:
+        return tuple(name for name, _ in cls.rules())
+
+    def to_dict(self):
+        return {name: rule.dump(getattr(self, name)) for name, rule in self.rules()}
+
+
+# --- the schema ----------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Geometry(_Section):
+    radius: float = _field(0.01, _positive("m"), "cylinder radius R")
+    length: float = _field(0.001, _positive("m"), "cylinder length along its axis (Table 1 'Width')")
+
+
+@dataclass(frozen=True)
+class Material(_Section):
+    """One body; both are tin in Table 1."""
+
+    youngs_modulus: float = _field(41.4e9, _positive("Pa"), "Young's modulus E")
+    poisson_ratio: float = _field(0.36, _Real("1", low=-1.0, high=0.5), "Poisson ratio nu")
+    yield_strength: float = _field(14.0e6, _positive("Pa"), "yield strength S_y")
+    resistivity: float = _field(1.15e-7, _positive("Ohm m"), "electrical resistivity rho")
+
+
+@dataclass(frozen=True)
+class Roughness(_Section):
+    """Combined roughness of the two surfaces (Greenwood-Williamson statistics, Eq. 11)."""
+
+    sigma: float = _field(0.5e-6, _positive("m"), "RMS roughness sigma")
+    asperity_density: float = _field(1.0e9, _positive("1/m^2"), "areal density of asperities eta")
+    asperity_radius: float = _field(1.0e-4, _positive("m"), "asperity tip radius R_peak")
+    hardness_model: str = _field(
+        "wadwalkar", _Choice(("wadwalkar", "jg2005")), "H_G/S_y: Eq. 8 (Wadwalkar 2010) or Jackson-Green 2005"
+    )
+    height_std: str = _field(
+        "sigma", _Choice(("sigma", "mccool")), "std of asperity heights: sigma (paper) or McCool's sigma_s"
+    )
+    split: float = _field(
+        0.5, _Real("1", low=0.0, low_open=False, high=1.0, high_open=False),
+        "share of sigma^2 on the sliding block (the rest on the cylinder): Patir-Cheng shear flow factor",
+    )
+    surface: str | None = _field(
+        None, _OptionalPath(), "measured surface file, relative to the scene file; sets sigma, eta and R_peak"
+    )
+    surface_cutoff: float | None = _field(
+        None, _AutoOr(_positive("m")), "short-wavelength cut-off of the surface's m2, m4 (auto: 4 samples)"
+    )
+    surface_sha256: str | None = None  # content of the surface file: what the case hash sees
+    directory: str = field(default=".", compare=False)  # where a relative surface path starts
+
+    def _all_keys(self):
+        """Every key; the equal split (the default, where the shear flow factor vanishes) is
+        left out, so that scenes written before the key existed keep their canonical form
+        and hash."""
+        data = super().to_dict()
+        if self.split == 0.5:
+            del data["split"]
+        return data
+
+    def to_dict(self):
+        """Without a surface, as before; with one, its path and no sigma, eta, R_peak (they
+        come from the file when the dict is loaded again)."""
+        drop = SURFACE_SETS if self.surface is not None else ("surface", "surface_cutoff")
+        return {k: v for k, v in self._all_keys().items() if k not in drop}
+
+    def canonical_dict(self):
+        """The case's identity: the file's content (sha256), not its name, with the
+        parameters read from it."""
+        if self.surface is None:
+            return self.to_dict()
+        return {**self._all_keys(), "surface": f"sha256:{self.surface_sha256}"}
+
+
+@dataclass(frozen=True)
+class Lubricant(_Section):
+    # <= 1e6 Pa s (far above any lubricant): 1e200 overflowed the film coefficients (issue 13)
+    viscosity: float = _field(0.1, _Real("Pa s", low=0.0, high=1e6, high_open=False), "dynamic viscosity mu (isoviscous)")
+    # Mineral oils conduct 0.4-2.1 pS/m (Shell Vitrea, Harvey et al., as reported in
+    # "Electrical conductivity of motor oil", qsstudy.com): 1 pS/m is 1e12 ohm m.
+    resistivity: float = _field(
+        1.0e12, _positive("Ohm m"), "electrical resistivity of the lubricant rho_f (effects.film_conduction)"
+    )
+
+
+@dataclass(frozen=True)
+class Interface(_Section):
+    boundary_friction: float = _field(
+        0.1, _nonnegative("1"), "friction coefficient of solid contact mu_b (not in the paper)"
+    )
+    # Hydrocarbon chains: 1.42 eV measured through alkanethiol monolayers (Wang, Lee & Reed,
+    # Phys. Rev. B 68 (2003) 035416).
+    barrier_height: float = _field(
+        1.4, _positive("eV"), "tunnelling barrier height phi of the film (effects.tunnelling, Simmons 1963)"
+    )
+    # Connector discontinuity tests count an event above 10 ohm (EIA-364-46 / -87 practice).
+    open_resistance: float = _field(
+        10.0, _positive("ohm"), "contact resistance above which the contact counts as open"
+    )
+
+
+@dataclass(frozen=True)
+class Operating(_Section):
+    force: float = _field(5.0, _positive("N"), "normal force on the cylinder F")
+    speed: float = _field(0.1, _nonnegative("m/s"), "sliding speed U of the block")
+
+
+@dataclass(frozen=True)
+class Effects(_Section):
+    """Physical effects to simulate (DESIGN.md "Effects"); ``effects: auto`` turns all on
+    and leaves ``auto`` set, so the canonical form keeps saying ``auto``. Setting any one
+    flag (``effects.hydrodynamics=false``) makes the effects explicit: auto ends, the
+    other flags stay on. The electrical-path effects (macro_constriction,
+    film_conduction, tunnelling) go beyond the paper: off by default and under auto."""
+
+    hydrodynamics: bool = _field(True, _Flag(), "modified Reynolds fluid pressure (Eq. 1)")
+    flow_factors: bool = _field(True, _Flag(), "Patir-Cheng flow factors (Eq. 2)")
+    cavitation: str = _field(
+        "reynolds", _FlagOrChoice(("reynolds", "jfo", "none")),
+        "reynolds: Swift-Stieber p >= 0 (true); jfo: mass-conserving JFO with film content; none: full Sommerfeld (false)",
+    )
+    asperity_contact: bool = _field(True, _Flag(), "statistical rough contact (Eqs. 6-13)")
+    plasticity: bool = _field(True, _Flag(), "Jackson-Green elastic-plastic asperities")
+    elastic_deformation: bool = _field(True, _Flag(), "macro deformation by influence coefficients")
+    alleviation: bool = _field(True, _Flag(), "alleviation factor Psi (Eq. 16)")
+    macro_constriction: bool = _field(False, _Flag(), "Greenwood cluster constriction in series (not in the paper)")
+    film_conduction: bool = _field(False, _Flag(), "ohmic conduction of the lubricant film (not in the paper)")
+    tunnelling: bool = _field(False, _Flag(), "Simmons tunnelling through thin films (not in the paper)")
+    auto: bool = False
+
+    def to_dict(self):
+        return AUTO if self.auto else super().to_dict()
+
+
+@dataclass(frozen=True)
+class MeshSettings(_Section):
+    nx: int = _field(51, _Integer(3), "nodes along x (sliding), ends included")
+    ny: int = _field(51, _Integer(3, also=(1,)), "nodes along y (cylinder axis); 1 = line contact")
+    x_min: float | None = _field(None, _AutoOr(_Real("m")), "inlet end of the domain (auto: mesh.domain_x)")
+    x_max: float | None = _field(None, _AutoOr(_Real("m")), "outlet end of the domain (auto: mesh.domain_x)")
+
+
+@dataclass(frozen=True)
+class SolverSettings(_Section):
+    tolerance: float = _field(1.0e-6, _Real("1", low=0.0, high=0.1), "relative force-balance tolerance")
+    max_iterations: int = _field(200, _Integer(1), "iteration limit of the force balance")
+
+
+@dataclass(frozen=True)
+class _SpeedTable:
+    """Rows (t s, U m/s), times strictly increasing from t = 0: a list of pairs, or the path
+    of a text file with two columns. The canonical form holds the rows, so the table's
+    content (not a file name) enters the case hash."""
+
+    allowed = "a list of [t (s), U (m/s)] rows (or a two-column text file), t increasing from 0"
+
+    def __call__(self, value):
+        if value is None:
+            return None
+        if isinstance(value, str):
+
+            try:
+                value = np.loadtxt(value, ndmin=2).tolist()
+            except (OSError, ValueError) as err:
+                raise _Invalid(f"cannot read the table file ({err})") from None
+        try:
+            rows = tuple((_as_real(t), _as_real(u)) for t, u in value)
+        except (TypeError, ValueError):
+            raise _Invalid("not a list of [t, U] pairs") from None
+        times = [t for t, _ in rows]
+        if len(rows) < 2 or times[0] != 0.0 or any(b <= a for a, b in zip(times, times[1:])):
+            raise _Invalid("needs >= 2 rows, the first at t = 0, times strictly increasing")
+        return rows
+
+    def dump(self, value):
+        return None if value is None else [list(row) for row in value]
+
+
+@dataclass(frozen=True)
+class Motion(_Section):
+    """What the block does in time (DESIGN.md Part II "Time"; lubecontact.transient). The
+    default (steady at operating.speed) is left out of the canonical form, so scenes
+    without ``motion:`` keep their hash."""
+
+    kind: str = _field(
+        "steady", _Choice(("steady", "stop", "start", "oscillation", "table")),
+        "steady | stop (slide, ramp down, rest) | start (ramp up from rest) | oscillation | table",
+    )
+    speed: float | None = _field(None, _AutoOr(_nonnegative("m/s")), "sliding speed before a stop / after a start (auto: operating.speed)")
+    stop_time: float = _field(0.0, _nonnegative("s"), "time the deceleration (stop) begins")
+    ramp: float = _field(1.0e-3, _nonnegative("s"), "duration of the linear deceleration / acceleration")
+    duration: float = _field(10.0, _positive("s"), "simulated time after stop_time (after t = 0 for other kinds)")
+    amplitude: float = _field(1.0e-4, _positive("m"), "oscillation: amplitude of the block's displacement")
+    frequency: float = _field(10.0, _positive("Hz"), "oscillation: frequency")
+    cycles: int = _field(3, _Integer(1), "oscillation: number of cycles, then rest")
+    table: tuple | None = _field(None, _SpeedTable(), "table: rows (t, U), linear in between, the last U after")
+    reconnect_factor: float = _field(2.0, _Real("1", low=1.0), "reconnected when R <= this x the resistance at rest")
+    tolerance: float = _field(1.0e-3, _Real("1", low=0.0, high=0.5), "relative local error of a time step (film)")
+
+    def to_dict(self):
+        return None if self == Motion() else super().to_dict()
+
+
+@dataclass(frozen=True)
+class Scene:
+    """One validated physical problem. Build it with ``load_scene``."""
+
+    geometry: Geometry = field(default_factory=Geometry)
+    cylinder: Material = field(default_factory=Material)
+    block: Material = field(default_factory=Material)
+    roughness: Roughness = field(default_factory=Roughness)
+    lubricant: Lubricant = field(default_factory=Lubricant)
+    interface: Interface = field(default_factory=Interface)
+    operating: Operating = field(default_factory=Operating)
+    effects: Effects = field(default_factory=Effects)
+    mesh: MeshSettings = field(default_factory=MeshSettings)
+    solver: SolverSettings = field(default_factory=SolverSettings)
+    motion: Motion = field(default_factory=Motion)
+
+    def to_dict(self) -> dict:
+        """Plain Python types; ``auto`` where the scene says auto; default sections that
+        would change old hashes (``motion``) left out."""
+        sections = {f.name: getattr(self, f.name).to_dict() for f in fields(self)}
+        return {name: value for name, value in sections.items() if value is not None}
+
+    def canonical_yaml(self) -> str:
+        """Sorted keys, every default filled, floats written from repr(float): equal scenes
+        give equal text however they were spelt. A measured surface appears by content."""
+        return self._canonical_yaml
+
+    @cached_property
+    def _canonical_yaml(self) -> str:
+        # built once per scene (the scene is frozen): each solve needs it for its hash and
+        # its dataset's attributes. libyaml's emitter writes the same text as PyYAML's
+        # pure-Python one (all 1174 scenes of config/config.yaml) in a tenth of the time:
+        # planning the default workflow hashed 1421 scenes in 5.7 s with the latter.
+        data = {**self.to_dict(), "roughness": self.roughness.canonical_dict()}
+        return yaml.dump(data, Dumper=_SAFE_DUMPER, sort_keys=True, default_flow_style=False)
+
+    @cached_property
+    def hash(self) -> str:
+        """Content hash (16 hex digits of sha256 of the canonical YAML): the case identity."""
+        return hashlib.sha256(self.canonical_yaml().encode()).hexdigest()[:16]
+
+    def replace(self, overrides: Mapping) -> Scene:
+        """A new validated scene with dotted-key overrides applied (same rules as load_scene)."""
+        return load_scene(self, overrides)
+
+
+SECTIONS: dict[str, type[_Section]] = {f.name: f.default_factory for f in fields(Scene)}
+_ALL_KEYS = [f"{s}.{k}" for s, cls in SECTIONS.items() for k in cls.keys()]
+
+
+# --- loading -------------------------------------------------------------------------------
+
+
+class _UniqueKeyLoader(yaml.CSafeLoader):
+    """SafeLoader that refuses a key given twice in one mapping (PyYAML keeps the last)."""
+
+    def construct_mapping(self, node, deep=False):
+        keys = [self.construct_object(k, deep=deep) for k, _ in node.value]
+        twice = sorted({str(k) for k in keys if keys.count(k) > 1})
+        if twice:
+            raise yaml.constructor.ConstructorError(
+                None, None, f"key {', '.join(twice)} given twice", node.start_mark
+            )
+        return super().construct_mapping(node, deep=deep)
+
+
+# Numbers in scenes are decimal only. YAML 1.1 (PyYAML) also reads 0x10 as 16, 010 as 8,
+# 1_000 as 1000 and 1:20 as 80 (base 60): such values stay strings here and are refused
+# ("not a number"), like every other non-number. 1e-6 is read as a number (YAML 1.2).
+_DECIMAL_RESOLVERS = (
+    ("tag:yaml.org,2002:int", re.compile(r"^[-+]?(0|[1-9][0-9]*)$"), list("-+0123456789")),
+    ("tag:yaml.org,2002:float",
+     re.compile(r"^[-+]?(\d+\.\d*|\.\d+)([eE][-+]?\d+)?$|^[-+]?(0|[1-9]\d*)[eE][-+]?\d+$|^[-+]?\.(inf|Inf|INF)$|^\.(nan|NaN|NAN)$"),
+     list("-+0123456789.")),
+)
+_UniqueKeyLoader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if tag not in {t for t, _, _ in _DECIMAL_RESOLVERS}]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()
+}
+for _tag, _regexp, _first in _DECIMAL_RESOLVERS:
+    _UniqueKeyLoader.add_implicit_resolver(_tag, _regexp, _first)
+
+
+def _yaml_value(text: str):
+    """One YAML value with the scene loader's rules (decimal numbers only)."""
+    return yaml.load(text, Loader=_UniqueKeyLoader)
+
+
+EMPTY_SCENE = (
+    "the scene file is empty; for the Table 1 scene write {} in it (every key then takes its "
+    "Table 1 default) or use config/scenes/table1.yaml"
+)
+
+
+def _read(source) -> tuple[object, str]:
+    """(raw data, origin for messages) from a path, a mapping or a Scene."""
+    if isinstance(source, Scene):
+        return source.to_dict(), "scene"
+    if isinstance(source, Mapping):
+        return source, "mapping"
+    if isinstance(source, (str, os.PathLike)):
+        path = Path(source)
+        try:
+            with path.open() as stream:  # a stream: YAML error marks name the file
+                raw = yaml.load(stream, Loader=_UniqueKeyLoader)
+        except OSError as err:
+            raise SceneError(str(path), [f"cannot read scene file: {err.strerror or err}"]) from err
+        except yaml.YAMLError as err:
+            raise SceneError(str(path), [f"invalid YAML: {err}"]) from err
+        if raw is None:
+            raise SceneError(str(path), [EMPTY_SCENE])
+        return raw, str(path)
+    raise TypeError(f"load_scene expects a path, a mapping or a Scene, not {type(source).__name__}")
+
+
+def _unknown_key(key: str) -> str:
+    """'key: unknown key; did you mean ...?' with the nearest known key."""
+    if key == "effects.auto":
+        return f"{key}: unknown key; write effects: auto (override effects=auto) for automatic effects"
+    section, _, name = key.partition(".")
+    leaf = name or section
+    elsewhere = [k for k in _ALL_KEYS if k.rsplit(".", 1)[1] == leaf]  # right name, wrong section
+    if name and section in SECTIONS:
+        siblings = SECTIONS[section].keys()
+        near = difflib.get_close_matches(f"{section}.{name}", [f"{section}.{k}" for k in siblings], n=1)
+        allowed = f"keys of {section}: " + ", ".join(siblings)
+    else:
+        near = difflib.get_close_matches(section, list(SECTIONS), n=1)
+        allowed = "sections: " + ", ".join(SECTIONS)
+    guess = elsewhere or near or difflib.get_close_matches(key, _ALL_KEYS, n=1)
+    return f"{key}: unknown key; " + (f"did you mean {' or '.join(guess)}?" if guess else allowed)
+
+
+def _apply_overrides(raw, overrides: Mapping, problems: list[str]):
+    """Copy of raw with dotted-key overrides set; string values are read as YAML."""
+    if not isinstance(raw, Mapping):
+        return raw
+    data = {k: dict(v) if isinstance(v, Mapping) else v for k, v in raw.items()}
+    for key, value in overrides.items():
+        key = str(key)
+        if isinstance(value, str):
+            try:
+                value = _yaml_value(value)
+            except yaml.YAMLError:
+                problems.append(f"{key} = {value!r}: not a valid YAML value")
+                continue
+        section, _, name = key.partition(".")
+        current = data.get(section)
+        if not name:  # a whole section: merge a mapping into a mapping, replace otherwise
+            both = isinstance(value, Mapping) and isinstance(current, Mapping)
+            data[section] = {**current, **value} if both else value
+            continue
+        if section == "effects" and current == AUTO:  # an explicit flag ends auto
+            current = {f.name: f.default for f in fields(Effects) if "rule" in f.metadata}
+        if current is None:
+            current = {}
+        if not isinstance(current, Mapping):
+            problems.append(f"{key}: cannot set, {section} is {current!r}, not a mapping")
+            continue
+        data[section] = {**current, name: value}
+    return data
+
+
+def _build_section(name: str, raw, problems: list[str]):
+    """The section's dataclass from its raw mapping, or None (problems appended)."""
+    cls = SECTIONS[name]
+    if name == "effects" and raw == AUTO:
+        return Effects(auto=True)
+    if raw is None:
+        raw = {}
+    if not isinstance(raw, Mapping):
+        extra = f" or {AUTO!r}" if name == "effects" else ""
+        problems.append(f"{name} = {raw!r}: not a mapping; allowed: a mapping of {', '.join(cls.keys())}{extra}")
+        return None
+    n_before = len(problems)
+    problems.extend(_unknown_key(f"{name}.{k}") for k in raw if k not in cls.keys())
+    values = {}
+    for key, rule in cls.rules():
+        if key not in raw:
+            continue
+        value = raw[key]
+        try:
+            values[key] = rule(value)
+        except _Invalid as why:
+            problems.append(f"{name}.{key} = {value!r}: {why}; allowed: {rule.allowed}")
+    return cls(**values) if len(problems) == n_before else None
+
+
+def _directory(source) -> str:
+    """Where a relative ``roughness.surface`` starts: the scene file's directory, a Scene's
+    own, else the current directory."""
+    if isinstance(source, Scene):
+        return source.roughness.directory
+    if isinstance(source, (str, os.PathLike)):
+        return str(Path(source).resolve().parent)
+    return str(Path.cwd())
+
+
+def _surface_replaces(raw, overrides: Mapping):
+    """An override of roughness.surface replaces sigma, eta and R_peak of the scene it
+    overrides (they come from the file); overriding them as well is still refused."""
+    if "roughness.surface" not in overrides or not isinstance(raw, Mapping) or not isinstance(raw.get("roughness"), Mapping):
+        return raw
+    return {**raw, "roughness": {k: v for k, v in raw["roughness"].items() if k not in SURFACE_SETS}}
+
+
+def _measured(roughness, raw, directory: str, problems: list[str]):
+    """The roughness section with sigma, eta and R_peak from ``roughness.surface``
+    (McCool's method, lubecontact.surfaces); unchanged without a surface."""
+    if roughness is not None and roughness.surface is None and roughness.surface_cutoff is not None:
+        problems.append(
+            f"roughness.surface_cutoff = {roughness.surface_cutoff!r}: no roughness.surface to apply it to; "
+            f"allowed: 'auto' without a surface"
+        )
+        return None
+    if roughness is None or roughness.surface is None:  # the directory serves later overrides
+        return roughness if roughness is None else replace(roughness, directory=directory)
+    given = [k for k in SURFACE_SETS if k in (raw or {})]
+    if given:
+        problems.extend(
+            f"roughness.{k} = {raw[k]!r}: set by roughness.surface = {roughness.surface!r}; allowed: "
+            f"leave out {', '.join(SURFACE_SETS)} when a surface is given" for k in given
+        )
+        return None
+    from lubecontact.surfaces.measured import scene_roughness
+    from lubecontact.surfaces.reading import SurfaceError
+
+    try:
+        params, digest = scene_roughness(Path(directory) / roughness.surface, roughness.surface_cutoff)
+    except SurfaceError as err:
+        problems.append(
+            f"roughness.surface = {roughness.surface!r}: {err}; allowed: a surface file with its size and unit "
+            f"(an instrument format; check it with lubecontact roughness), relative to {directory}"
+        )
+        return None
+    values = dict(zip(SURFACE_SETS, (params.sigma, params.asperity_density, params.asperity_radius)))
+    return replace(roughness, **values, surface_sha256=digest, directory=directory)
+
+
+def _cross_problems(s: dict) -> list[str]:
+    """Rules between keys; each runs only if its sections are valid."""
+    problems = []
+    geometry, roughness, effects, operating = (s.get(k) for k in ("geometry", "roughness", "effects", "operating"))
+    if geometry is not None and roughness is not None and roughness.sigma > geometry.radius / 100:
+        problems.append(
+            f"roughness.sigma = {roughness.sigma!r}: too large against the cylinder; allowed: "
+            f"<= geometry.radius/100 = {geometry.radius / 100:g} m"
+        )
+    if roughness is not None and roughness.height_std == "mccool":
+        eta_r = roughness.asperity_density * roughness.asperity_radius
+        variance = roughness.sigma**2 - MCCOOL_VARIANCE_CONSTANT / eta_r**2
+        if variance <= 0:
+            problems.append(
+                f"roughness.height_std = 'mccool': McCool's sigma_s^2 = sigma^2 - 3.717e-4/(eta R_peak)^2 = "
+                f"{variance:.3g} m^2 is not positive; allowed: 'mccool' only when roughness.sigma > "
+                f"{math.sqrt(MCCOOL_VARIANCE_CONSTANT) / eta_r:.3g} m, else 'sigma'"
+            )
+    motion = s.get("motion")
+    if motion is not None and motion.kind == "table" and motion.table is None:
+        problems.append("motion.kind = 'table': motion.table is missing; allowed: rows [t (s), U (m/s)] or a file")
+    if effects is not None and operating is not None and not effects.asperity_contact:
+        if not effects.hydrodynamics or operating.speed == 0:
+            problems.append(
+                f"effects.asperity_contact = False: nothing carries the load: smooth surfaces need a fluid "
+                f"film, i.e. effects.hydrodynamics = true (got {effects.hydrodynamics}) and "
+                f"operating.speed > 0 (got {operating.speed!r}); allowed: enable asperity_contact"
+            )
+    return problems
+
+
+def load_scene(path_or_mapping, overrides: Mapping | None = None) -> Scene:
+    """Read, complete (Table 1 defaults), override and validate a scene.
+
+    ``path_or_mapping``: a YAML file path, a mapping of sections, or a Scene.
+    ``overrides``: dotted keys to values, e.g. ``{"roughness.sigma": "1e-6"}``; a string
+    value is read as YAML first, a section name takes a whole section (``effects=auto``).
+    Raises SceneError listing every problem.
+    """
+    raw, origin = _read(path_or_mapping)
+    problems: list[str] = []
+    raw = _apply_overrides(_surface_replaces(raw, overrides or {}), overrides or {}, problems)
+    if not isinstance(raw, Mapping):
+        raise SceneError(origin, problems + [f"{raw!r}: a scene is a mapping of sections {', '.join(SECTIONS)}"])
+    problems.extend(_unknown_key(str(k)) for k in raw if k not in SECTIONS)
+    sections = {name: _build_section(name, raw.get(name), problems) for name in SECTIONS}
+    sections["roughness"] = _measured(sections["roughness"], raw.get("roughness"), _directory(path_or_mapping), problems)
+    problems.extend(_cross_problems(sections))
+    if problems:
+        raise SceneError(origin, problems)
+    scene = Scene(**sections)
+    problems.extend(mesh_problems(scene))
+    if problems:
+        raise SceneError(origin, problems)
+    return scene
+
+
+def parse_override(text: str) -> tuple[str, object]:
+    """'key=value' (CLI --set) -> (key, value read as YAML)."""
+    key, sep, value = text.partition("=")
+    key = key.strip()
+    if not sep or not key:
+        raise SceneError("override", [f"{text!r}: expected key=value, e.g. roughness.sigma=1e-6"])
+    try:
+        return key, _yaml_value(value)
+    except yaml.YAMLError as err:
+        raise SceneError("override", [f"{key} = {value!r}: not a valid YAML value ({err})"]) from err

@@ -1,0 +1,72 @@
+"""The transient figures' cases (config/transient.yaml): which scenes to run, by content hash.
+
+A study names a base scene and overrides shared by every case, and three figures:
+``stop`` (curves: a list of {label, set: overrides}), ``reconnect`` (optional set: overrides of
+every case; x: a dotted key and its values, one
+line per value of ``series``), ``vibration`` (one case). Each case is a scene; its hash is
+the case identity (results/transient/<hash>.nc), so a case shared by two figures (the
+baseline stop) runs once. Library code: reads only the base scene.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Mapping
+from dataclasses import fields
+
+import yaml
+
+from lubecontact.scene.scene import SECTIONS, load_scene
+
+
+def _merge(base: dict, extra: Mapping | None) -> dict:
+    out = copy.deepcopy(base)
+    for key, value in (extra or {}).items():
+        out[key] = _merge(out.get(key, {}), value) if isinstance(value, Mapping) and isinstance(out.get(key), Mapping) else value
+    return out
+
+
+def study_spec(path, overrides: Mapping | None = None) -> dict:
+    """config/transient.yaml deep-merged with ``overrides`` (config["transient"])."""
+    with open(path) as stream:
+        return _merge(yaml.safe_load(stream), overrides)
+
+
+def _scene(spec: Mapping, overrides: Mapping):
+
+    return load_scene(spec["base"], {**spec.get("set", {}), **overrides})
+
+
+def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
+    """figure -> its cases, each {"id": hash, "overrides": {...}, "label": str, and for the
+    design chart "x" and "series"}. Raises SceneError naming a bad value."""
+    figures = spec["figures"]
+    out = {}
+    stop = figures["stop"]
+    out["stop"] = [{"label": curve["label"], "overrides": dict(curve.get("set") or {})} for curve in stop["curves"]]
+    chart = figures["reconnect"]
+    (series_key, series_values), = chart["series"].items()
+    out["reconnect"] = [
+        {"label": f"{series_key} = {s:g} {key_units(series_key)}", "x": x, "series": s,
+         "overrides": {**(chart.get("set") or {}), chart["x"]: x, series_key: s}}
+        for s in series_values for x in chart["values"]
+    ]
+    out["vibration"] = [{"label": "vibration", "overrides": dict(figures["vibration"]["set"])}]
+    for cases in out.values():
+        for case in cases:
+            case["id"] = _scene(spec, case["overrides"]).hash
+    return out
+
+
+def key_units(dotted: str) -> str:
+    """The unit of a scene key (its schema rule), e.g. 'Pa s' for lubricant.viscosity."""
+
+
+    section, name = dotted.split(".")
+    rule = next(f for f in fields(SECTIONS[section]) if f.name == name).metadata["rule"]
+    return getattr(rule, "unit", "1")
+
+
+def case_overrides(spec: Mapping, cases: Mapping) -> dict[str, dict]:
+    """case id -> the full dotted overrides of its scene (plain values, for Snakemake params)."""
+    return {c["id"]: {**spec.get("set", {}), **c["overrides"]} for group in cases.values() for c in group}

@@ -1,0 +1,82 @@
+"""``lubecontact.transient(scene)``: the contact along its ``motion:`` (DESIGN.md Part II "Time")."""
+
+from __future__ import annotations
+
+import math
+import sys
+
+import numpy as np
+import xarray as xr
+
+from lubecontact.model.prepare import prepare
+from lubecontact.model.coupling import coupled_solve
+from lubecontact.model.model import Model
+from lubecontact.numerics.blas_threads import one_blas_thread
+from lubecontact.scene import SceneError
+from lubecontact.unsteady.integrator import TimeIntegrator, scene_at
+from lubecontact.unsteady.motion import SpeedHistory, motion_problems
+from lubecontact.unsteady.series import instant, level_rows, open_resistance, oscillation_metrics, reconnect_time, series_dataset
+
+
+def _rest_resistance(integrator) -> float:
+    """Resistance of the contact at rest: the steady dry solve (no fluid pressure), the
+    state every stop settles to."""
+
+    if integrator.contact is None:
+        return math.inf
+    model = Model.assemble(scene_at(integrator.scene, 0.0), integrator.steady_model.mesh, integrator.contact)
+    state, _ = coupled_solve(model)
+    integrator.coupled_solves += 1
+    return instant(model, state)["contact_resistance"]
+
+
+def transient(scene, progress: bool | None = None) -> xr.Dataset:
+    """Integrate ``scene``'s motion in time; returns the Dataset along ``time`` (s).
+
+    The run starts from the steady state at the motion's initial speed and keeps the
+    cylinder in force balance at every instant (integrator.py). ``progress``: a bar on
+    stderr (default: when stderr is a terminal). A step that fails ends the run: the levels
+    so far are returned with ``converged = 0`` and the failure in ``notes``.
+    """
+    scene = prepare(scene).scene
+    problems = motion_problems(scene)
+    if problems:
+        raise SceneError("scene", problems)
+    history = SpeedHistory.from_scene(scene)
+    if progress is None:
+        progress = sys.stderr.isatty()
+
+    with one_blas_thread():  # one BLAS thread, as solve()
+        integrator = TimeIntegrator(scene, history)
+        levels, failure = integrator.run(progress)
+        rest = _rest_resistance(integrator)
+    threshold = open_resistance(scene)
+    series_t = np.array([lv.time for lv in levels])
+    notes = []
+    if failure:
+        notes.append("NOT CONVERGED: " + failure)
+    if history.rest_from is None:
+        notes.append(f"motion.kind = {scene.motion.kind}: the motion never stops, reconnect_time is NaN")
+    scalars = {
+        "rest_resistance": rest,
+        "open_resistance": threshold,
+        "converged": int(not failure),
+        "steps": len(levels) - 1,
+        "rejected_steps": integrator.rejected,
+        "coupled_solves": integrator.coupled_solves,
+        "solve_time": integrator.wall_time,
+    }
+    rows = level_rows(levels)
+    resistance = np.array([row["contact_resistance"] for row in rows])
+    recon = reconnect_time(series_t, resistance, history.rest_from, scene.motion.reconnect_factor * rest)
+    if failure and math.isinf(recon):
+        recon = math.nan  # the run ended early: "not within duration" is unknown
+    scalars["reconnect_time"] = recon
+    peaks = None
+    fraction = math.nan
+    if history.period is not None:
+        fraction, peaks = oscillation_metrics(series_t, resistance, history.period, scene.motion.cycles, threshold)
+    scalars["open_fraction"] = fraction
+    notes.append(f"open threshold {threshold:g} ohm (interface.open_resistance, default {threshold:g})")
+    notes.append(f"cavitation: {scene.effects.cavitation} (Swift-Stieber is not mass-conserving where a film re-forms)")
+    return series_dataset(scene, series_t, rows, scalars, "; ".join(notes), peaks)
