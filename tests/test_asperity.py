@@ -1,4 +1,4 @@
-"""Single Jackson-Green asperity (paper Eqs. 6-10, 14) against physics.md sections 1, 9 and
+"""Single Jackson-Green asperity (paper Eqs. 6-10, 14) against docs/physics.md sections 1, 9 and
 checks #1, #3, #4. Printed reference values are compared to half a unit of their last digit."""
 
 import math
@@ -17,7 +17,7 @@ E_PRIME = E / (1.0 - NU**2)  # the paper's apparent convention: 47.56 GPa
 
 
 def assert_printed(value, printed: str):
-    """value agrees with a number printed in physics.md to half a unit of its last digit."""
+    """value agrees with a number printed in docs/physics.md to half a unit of its last digit."""
     d = Decimal(printed)
     half_ulp = 0.5 * 10.0 ** d.as_tuple().exponent
     assert abs(value - float(d)) <= half_ulp * (1 + 1e-9), (value, printed)
@@ -70,7 +70,7 @@ def test_critical_values_identities(modulus):
 @pytest.mark.parametrize(
     "omega, load_jg, load_wadwalkar, radius, mean_pressure",
     [
-        (1e-9, "9.1875e-6", "9.1874e-6", "0.334e-6", "26.2e6"),  # physics.md prints 9.1875e-6 for both
+        (1e-9, "9.1875e-6", "9.1874e-6", "0.334e-6", "26.2e6"),  # docs/physics.md prints 9.1875e-6 for both
         (1e-7, "2.7218e-3", "2.7160e-3", "4.63e-6", "40.4e6"),
         (1e-6, "3.0868e-2", "3.1327e-2", "17.24e-6", "33.1e6"),
     ],
@@ -135,7 +135,7 @@ def test_hardness_forms():
     ar = np.linspace(0.0, 0.25, 26)
     wad, jg = hardness_ratio(ar, "wadwalkar"), hardness_ratio(ar, "jg2005")
     assert wad[0] == 2.84 and jg[0] == 2.84  # both start at 2.84 S_y
-    # physics.md says < 2 % up to a/R = 0.25; it is < 2 % up to 0.2 and 2.26 % at 0.25
+    # docs/physics.md says < 2 % up to a/R = 0.25; it is < 2 % up to 0.2 and 2.26 % at 0.25
     np.testing.assert_array_less(np.abs(wad / jg - 1)[ar <= 0.2], 0.02)
     assert abs(wad[-1] / jg[-1] - 1) == pytest.approx(0.02258, abs=1e-5)
     assert hardness_ratio(0.5, "wadwalkar") == pytest.approx(2.84 - 0.92)

@@ -1,6 +1,6 @@
 """Mass-conserving (JFO) cavitation against independent truths.
 
-Truths: Martin's rigid cylinder with the Reynolds exit condition (physics.md section 4:
+Truths: Martin's rigid cylinder with the Reynolds exit condition (docs/physics.md section 4:
 X_e = 0.47513, w' = 4.8950 mu u_m R/h0), which JFO must reproduce for a steady single
 convergent-divergent gap (section 16); conservation of the volumetric flux, computed here
 from the face formula q = -k_f dp/dx + (U/2) h_T,f theta_up, across a film that ruptures and

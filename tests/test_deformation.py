@@ -1,4 +1,4 @@
-"""Elastic deformation by influence coefficients (physics.md section 7, checks #17-21).
+"""Elastic deformation by influence coefficients (docs/physics.md section 7, checks #17-21).
 
 Truths: Love's closed-form values for a square, the plane-strain strip difference, quadrature
 of the point-load Green's functions, Hertz line contact (Johnson ch. 4), the mid-length
@@ -23,7 +23,7 @@ RADIUS = 0.01  # m
 LENGTH = 1e-3  # m
 HALF_WIDTH = np.sqrt(4 * LOAD_PER_LENGTH * RADIUS / (np.pi * E_STAR))  # Hertz b
 PEAK = 2 * LOAD_PER_LENGTH / (np.pi * HALF_WIDTH)  # Hertz p0
-# mid-length displacement of a Hertzian strip of length L >> b (physics.md section 6)
+# mid-length displacement of a Hertzian strip of length L >> b (docs/physics.md section 6)
 STRIP_CENTRE = 2 * LOAD_PER_LENGTH / (np.pi * E_STAR) * (np.log(2 * LENGTH / HALF_WIDTH) + 0.5)
 
 

@@ -1,4 +1,4 @@
-"""The automatic domain follows the film (physics.md section 17): lengthening the inlet
+"""The automatic domain follows the film (docs/physics.md section 17): lengthening the inlet
 further moves the resistance by < 1 %, at 1 and 10 m/s, where main's fixed inlet did not."""
 
 import pytest

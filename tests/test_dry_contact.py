@@ -1,5 +1,5 @@
 """Dry contact (hydrodynamics off): force balance of Eq. (18) with F_fluid = 0, against
-Hertz line contact (Johnson 1985 Ch. 4; physics.md section 6) and physical trends."""
+Hertz line contact (Johnson 1985 Ch. 4; docs/physics.md section 6) and physical trends."""
 
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Effects (DESIGN.md "Effects: simulate only what the scene calls for").
+"""Effects (docs/DESIGN.md "Effects: simulate only what the scene calls for").
 
 1. A disabled effect never runs: its entry point is patched to raise, and the solve with
    the effect off still works (while the same patch breaks the solve with the effect on).
@@ -200,7 +200,7 @@ def test_alleviation_off_raises_the_resistance_by_the_exact_factor():
 
 
 def test_reynolds_line_load_reproduces_martin():
-    # physics.md 4: rigid cylinder, Reynolds exit condition: w' = 4.895 mu u_m R / h0.
+    # docs/physics.md section 4: rigid cylinder, Reynolds exit condition: w' = 4.895 mu u_m R / h0.
     mu, speed, radius, h0 = 0.1, 1.0, 0.01, 1e-6
     inlet = math.sqrt(2 * radius * h0)
     x = inlet * np.tan(np.linspace(math.atan(-60.0), math.atan(5.0), 4001))
@@ -219,10 +219,10 @@ def test_film_estimates_follow_martin_and_hamrock():
     a, b = 4.0 * force / (mu * speed * length**3), force / (4.895 * mu * 0.5 * speed * radius * length)
     short = (-b + math.sqrt(b * b + 4.0 * a)) / (2.0 * a)
     assert effects.film_estimate(s.replace({"mesh.ny": 11})) == pytest.approx(short, rel=0.01)
-    for g in (20.0, 50.0, 200.0):  # physics.md 5: H_min -> 3.10 g_E^0.8 (within 2 % for g_E >= 20)
+    for g in (20.0, 50.0, 200.0):  # docs/physics.md section 5: H_min -> 3.10 g_E^0.8 (within 2 % for g_E >= 20)
         assert film_estimates.elastic_film_factor(g) * 4.9 == pytest.approx(3.10 * g**0.8, rel=0.02)
     assert film_estimates.elastic_film_factor(0.01) == pytest.approx(1.0, abs=0.015)
-    point = effects.operating_point(s)  # physics.md 9: g_E = 0.324 at 10 m/s for Table 1
+    point = effects.operating_point(s)  # docs/physics.md section 9: g_E = 0.324 at 10 m/s for Table 1
     assert point.elasticity == pytest.approx(0.324, rel=0.01)
 
 

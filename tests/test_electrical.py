@@ -1,4 +1,4 @@
-"""Holm spots, alleviation and nodes in parallel (paper Eqs. 15-17), physics.md section 8 and
+"""Holm spots, alleviation and nodes in parallel (paper Eqs. 15-17), docs/physics.md section 8 and
 checks #22, #23; log-sum-exp robustness of the resistance in the Gaussian tails."""
 
 import math

@@ -1,4 +1,4 @@
-"""The full electrical path (physics.md sections 12-13): Greenwood's cluster constriction by
+"""The full electrical path (docs/physics.md sections 12-13): Greenwood's cluster constriction by
 the DC-FFT 1/r operator, film conduction and Simmons tunnelling, against independent truths;
 the paper's model unchanged when the new effects are off; the Psi clamp out of the answer."""
 
@@ -39,7 +39,7 @@ def log_indicator(mask):
 
 
 def rectangle_pair_integral(a, b):
-    """physics.md section 12: iint over an a x b rectangle of 1/|r - r'| (checked there by Monte Carlo)."""
+    """docs/physics.md section 12: iint over an a x b rectangle of 1/|r - r'| (checked there by Monte Carlo)."""
     d = math.hypot(a, b)
     return (2 / 3) * (a**3 + b**3 - d**3) + 2 * a * a * b * math.asinh(b / a) + 2 * a * b * b * math.asinh(a / b)
 
@@ -118,7 +118,7 @@ def test_cluster_is_homogeneous_and_never_overflows():
 
 
 def test_simmons_one_point():
-    """physics.md section 13: phi = 1 eV, s = 1 nm gives about 6e-10 ohm m^2, from Simmons' eq. 25
+    """docs/physics.md section 13: phi = 1 eV, s = 1 nm gives about 6e-10 ohm m^2, from Simmons' eq. 25
     written out here with CODATA constants."""
     s, phi = 1e-9, 1.0 * constants.e
     root = math.sqrt(2 * constants.m_e * phi)
@@ -192,7 +192,7 @@ def test_full_path_does_not_depend_on_the_psi_clamp(monkeypatch):
 
 
 def test_table1_at_rest_full_path():
-    """At rest the cluster term is ~10x the spots and the whole 1.5-3e-4 ohm (physics.md
+    """At rest the cluster term is ~10x the spots and the whole 1.5-3e-4 ohm (docs/physics.md
     section 12: a uniform-flux strip of the contact width gives 1.7-2.6e-4 ohm)."""
     scene = lc.load_scene(TABLE1, {"mesh.nx": 21, "mesh.ny": 1, "operating.speed": 0.0,
                                    "effects.macro_constriction": True, "effects.film_conduction": True})

@@ -1,6 +1,6 @@
 """Patir-Cheng flow factor (Eq. 2), expected gap and regularised Poiseuille coefficient.
 
-Truths: physics.md section 10 #8 and #10 (published/derived values), the defining integral
+Truths: docs/physics.md section 10 #8 and #10 (published/derived values), the defining integral
 of the expected gap by quadrature, and limits.
 """
 
@@ -54,7 +54,7 @@ def test_expected_gap_equals_its_defining_integral(H):
 
 
 def test_expected_gap_tends_to_h_for_thick_films():
-    # physics.md #10 says "h_T -> h for H > 3" at 1e-5: that holds from H ~ 3.9 on; at H = 3
+    # docs/physics.md section 10 says "h_T -> h for H > 3" at 1e-5: that holds from H ~ 3.9 on; at H = 3
     # the difference is the Gaussian tail moment 3.8e-4 sigma.
     H = np.linspace(4.0, 50.0, 200)
     assert np.max(np.abs(expected_gap(H * SIGMA, SIGMA) / SIGMA - H)) < 1e-5

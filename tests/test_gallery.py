@@ -53,7 +53,7 @@ def test_dry_static_is_carried_by_the_asperities_alone(solved):
     assert "hydrodynamics" not in ran(ds)
     assert ds["fluid_force"].item() == 0.0
     assert ds["friction_coefficient"].item() == pytest.approx(scene.interface.boundary_friction, rel=1e-5)
-    sigma = scene.roughness.sigma  # physics.md 9: dry Table 1 contact, centre h/sigma ~ -0.66 to -0.69
+    sigma = scene.roughness.sigma  # docs/physics.md section 9: dry Table 1 contact, centre h/sigma ~ -0.66 to -0.69
     assert -1.0 < ds["central_film_thickness"].item() / sigma < -0.4
 
 
@@ -61,7 +61,7 @@ def test_smooth_full_film_is_an_open_circuit_with_a_martin_like_film(solved):
     scene, ds = solved("smooth_full_film")
     assert ran(ds) == {"hydrodynamics", "cavitation", "elastic_deformation"}
     assert ds["open_circuit"].item() == 1 and ds["contact_force"].item() == 0.0
-    s = scene  # Martin (physics.md 4) bounds a finite, side-leaking cylinder's film from above
+    s = scene  # Martin (docs/physics.md section 4) bounds a finite, side-leaking cylinder's film from above
     martin = 4.9 * s.lubricant.viscosity * 0.5 * s.operating.speed * s.geometry.radius * s.geometry.length / s.operating.force
     assert 0.3 * martin < ds["min_film_thickness"].item() < martin
     # Couette friction of the full film, 7.283 mu u_m sqrt(2R/h) per length, at the film found

@@ -1,5 +1,5 @@
 """The lubricated, coupled solve (Eqs. 1-18) against independent truths: Martin's rigid
-cylinder, the isoviscous-elastic line contact (physics.md section 5), symmetry, the
+cylinder, the isoviscous-elastic line contact (docs/physics.md section 5), symmetry, the
 paper's qualitative findings, and the hard cases of the stability suite."""
 
 import numpy as np
@@ -33,7 +33,7 @@ def test_rigid_smooth_line_contact_carries_martins_load():
 @pytest.mark.parametrize(
     "speed, h_min, h_c, x_range",
     [
-        # physics.md section 9 (E'_H = 47.56 GPa): reference solver, 1000-1600 nodes, ~1 % grid error
+        # docs/physics.md section 9 (E'_H = 47.56 GPa): reference solver, 1000-1600 nodes, ~1 % grid error
         (0.01, 20.9e-9, 26.6e-9, (-2.5e-4, 1e-4)),
         (0.1, 93.5e-9, 117e-9, (-4e-4, 1.5e-4)),
         (1.0, 0.559e-6, 0.575e-6, (-1.2e-3, 4e-4)),

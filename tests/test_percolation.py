@@ -1,4 +1,4 @@
-"""Flow down to percolation (physics.md section 15): the percolating Poiseuille coefficient and
+"""Flow down to percolation (docs/physics.md section 15): the percolating Poiseuille coefficient and
 the film on the faces of the finite volumes (percolation.py).
 
 Truths: the law's limits (Patir-Cheng above H = 0.5, continuity there, zero conductance at

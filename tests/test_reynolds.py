@@ -1,6 +1,6 @@
 """Averaged Reynolds equation (Eq. 1) with the Reynolds cavitation condition.
 
-Truths: Martin's rigid cylinder (physics.md section 4, #11) and its exact solution on the
+Truths: Martin's rigid cylinder (docs/physics.md section 4, #11) and its exact solution on the
 truncated domain by quadrature; half-Sommerfeld (#12); antisymmetry and y-symmetry; the line
 limit of a long cylinder; mass conservation; an independent projected-SOR solution of the
 same complementarity problem on a small grid; plain Reynolds as the thick-film limit.

@@ -1,4 +1,4 @@
-"""Statistical rough contact (paper Eqs. 11-13, 15) against physics.md sections 2 and 9 and
+"""Statistical rough contact (paper Eqs. 11-13, 15) against docs/physics.md sections 2 and 9 and
 checks #2, #5, #6, #7: McCool statistics, the F_n closed forms, the elastic GW limit, the
 Table 1 statistical table, direct adaptive quadrature of Eqs. (11)/(15), and the tails."""
 
@@ -25,7 +25,7 @@ E_STAR = 1.0 / (2.0 * (1.0 - 0.36**2) / 41.4e9)
 
 
 def assert_printed(value, printed: str):
-    """value agrees with a number printed in physics.md to half a unit of its last digit."""
+    """value agrees with a number printed in docs/physics.md to half a unit of its last digit."""
     d = Decimal(printed)
     assert abs(value - float(d)) <= 0.5 * 10.0 ** d.as_tuple().exponent * (1 + 1e-9), (value, printed)
 

@@ -1,7 +1,7 @@
 """Scenes: Table 1 defaults, canonical form and hash, overrides, and every refusal.
 
 The truth for the defaults is the paper's Table 1 typed in here (Jackson & Angadi 2022),
-plus the choices DESIGN.md states for what the paper leaves open.
+plus the choices docs/DESIGN.md states for what the paper leaves open.
 """
 
 import dataclasses
@@ -257,7 +257,7 @@ def test_bad_input_names_key_and_allowed(source, expected):
 
 
 def test_mccool_limit_matches_physics_md():
-    # physics.md section 9: sigma_s = 0.46134 um for Table 1; the bound is sqrt(3.717e-4)/(eta R).
+    # docs/physics.md section 9: sigma_s = 0.46134 um for Table 1; the bound is sqrt(3.717e-4)/(eta R).
     sigma_min = math.sqrt(3.717e-4) / (1e9 * 1e-4)
     assert math.sqrt(0.5e-6**2 - sigma_min**2) == pytest.approx(0.46134e-6, rel=1e-4)
     load_scene({"roughness": {"height_std": "mccool", "sigma": 1.01 * sigma_min}})

@@ -1,6 +1,6 @@
 """Patir & Cheng's (1979) shear stress and shear flow factors, and the friction they give.
 
-Truths: physics.md section 10 #9 (published fits' values and their continuity), the
+Truths: docs/physics.md section 10 #9 (published fits' values and their continuity), the
 defining integral of phi_f (h E[1/h_local] over the polynomial height distribution of
 Patir & Cheng) by quadrature, and the smooth-surface limit.
 """
@@ -20,7 +20,7 @@ from lubecontact.physics.shear_factors import (
 pytestmark = pytest.mark.filterwarnings("error")
 
 
-def test_published_values():  # physics.md #9
+def test_published_values():  # docs/physics.md section 9
     assert shear_flow_factor_unit(1.0) == pytest.approx(0.79559, abs=1e-5)
     assert couette_stress_factor(1.0) == pytest.approx(1.63659, abs=1e-5)
     assert poiseuille_stress_factor(2.0) == pytest.approx(0.62601, abs=1e-5)
@@ -78,7 +78,7 @@ def test_couette_gap_of_unequal_roughness():
     equal, _ = couette_gap(h, sigma, 0.5)
     np.testing.assert_array_equal(equal, expected_gap(h, sigma))  # phi_s vanishes for equal roughness
     block, slope = couette_gap(h, sigma, 1.0)  # all roughness on the sliding block: + sigma Phi_s
-    assert block[2] / sigma == pytest.approx(1.08332 + 0.79559, abs=2e-5)  # physics.md #9, #10
+    assert block[2] / sigma == pytest.approx(1.08332 + 0.79559, abs=2e-5)  # docs/physics.md section 9, #10
     cylinder, _ = couette_gap(h, sigma, 0.0)
     np.testing.assert_allclose(0.5 * (block + cylinder), equal, rtol=1e-14)  # odd in the split
     assert np.all(cylinder > 0.0)

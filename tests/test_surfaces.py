@@ -1,4 +1,4 @@
-"""Roughness from measured surfaces (lubecontact.surfaces; physics.md section 18).
+"""Roughness from measured surfaces (lubecontact.surfaces; docs/physics.md section 18).
 
 Independent truths: the analytic profile moments of a Gaussian-correlated surface
 (ACF sigma^2 exp(-r^2/l^2): m2 = 2 sigma^2/l^2, m4 = 12 sigma^2/l^4, so alpha = 3) and of a

@@ -1,5 +1,5 @@
-"""Time (lubecontact.transient, DESIGN.md Part II "Time") against independent truths: the
-analytic squeeze law of a rigid smooth cylinder (physics.md section 14), the steady solve,
+"""Time (lubecontact.transient, docs/DESIGN.md "Time") against independent truths: the
+analytic squeeze law of a rigid smooth cylinder (docs/physics.md section 14), the steady solve,
 the limit of shrinking ramps, the integrator's order, the discrete volume balance and
 trends argued from the equations. Line mode and coarse meshes keep them cheap."""
 
@@ -77,7 +77,7 @@ def test_bdf2_coefficients_and_error_constants_at_constant_step():
 
 
 def test_rigid_smooth_cylinder_follows_the_analytic_squeeze_law():
-    # physics.md section 14: h0^(-1/2)(t) = h_i^(-1/2) + w' t / (6 sqrt(2) pi mu R^(3/2)) from the
+    # docs/physics.md section 14: h0^(-1/2)(t) = h_i^(-1/2) + w' t / (6 sqrt(2) pi mu R^(3/2)) from the
     # end of the ramp, where the film left by 1 m/s sliding (0.41 um) has 2 % of its load left
     ds = lc.transient(scene(SMOOTH_STOP, **{"motion.tolerance": 1e-5}))
     assert ds["converged"].item() == 1

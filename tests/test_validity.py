@@ -1,4 +1,4 @@
-"""Validity flags (DESIGN.md Part II): every ground a case leaves is named in its output."""
+"""Validity flags (docs/DESIGN.md): every ground a case leaves is named in its output."""
 
 
 import pytest
@@ -36,7 +36,7 @@ def test_1000_newton_leaves_gw_and_elasticity_and_caps_the_area():
 
 def test_bandwidth_at_sigma_0_02_um(capsys, tmp_path):
     """eta R sigma = 0.020358 sqrt(alpha): sigma = 0.02 um with Table 1's eta, R_peak gives
-    alpha = 0.0096; Table 1 itself alpha = 6.03 (physics.md section 9)."""
+    alpha = 0.0096; Table 1 itself alpha = 6.03 (docs/physics.md section 9)."""
     scene = lc.load_scene(TABLE1, {"roughness.sigma": 0.02e-6})
     assert bandwidth(scene.roughness) == pytest.approx((1e9 * 1e-4 * 0.02e-6 / 0.020358) ** 2, rel=1e-12)
     assert bandwidth(lc.load_scene(TABLE1).roughness) == pytest.approx(6.032, abs=1e-3)
@@ -50,7 +50,7 @@ def test_bandwidth_at_sigma_0_02_um(capsys, tmp_path):
 
 def test_inlet_flag_follows_the_film():
     """Rigid-inlet fraction against Martin's fully flooded film; the flag at 10 m/s where the
-    fixed inlet starves the film (physics.md section 17) and not at rest (no fluid)."""
+    fixed inlet starves the film (docs/physics.md section 17) and not at rest (no fluid)."""
     assert inlet_film_fraction(1e6) == pytest.approx(1.0, abs=1e-6)
     assert inlet_film_fraction(3.5) == pytest.approx(0.83, abs=0.01)  # section 17: 0.85 at X ~ 3.5
     assert 14 < required_inlet(0.01) < 17

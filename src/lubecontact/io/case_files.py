@@ -25,7 +25,6 @@ QUARANTINE = ".corrupt"  # hidden folder next to the case files
 def case_problem(path, case_id: str, fingerprint: str | None = None) -> str | None:
     """Why ``path`` is not the complete case ``case_id`` (solved by ``fingerprint``, if
     given), or None. A missing file is a problem too ("missing")."""
-
     path = Path(path)
     if not path.exists():
         return "missing"
@@ -66,7 +65,6 @@ def read_case(path) -> CaseRecord:
     file and the remedy (collect's loader). xarray took 10 ms a file; this takes about 3
     (a scalar's getValue skips the slicing that var[...] costs: 1.6 instead of 2.8 ms for a
     case's 23 variables)."""
-
     try:
         with netCDF4.Dataset(path) as nc:
             nc.set_auto_maskandscale(False)
@@ -96,7 +94,6 @@ def quarantine(cases: dict[str, str], memo) -> list[str]:
     Reading ~500 files costs seconds, so a file found complete is remembered in ``memo``
     (JSON: name -> size, mtime, inode) and read again only when one of those changes (any
     rewrite, truncation or replacement does)."""
-
     memo = Path(memo)
     try:
         known = json.loads(memo.read_text())

@@ -1,4 +1,4 @@
-"""One operating point's answer as plain arrays (DESIGN.md "Output of one case") and its two
+"""One operating point's answer as plain arrays (docs/DESIGN.md "Output of one case") and its two
 forms: the ``xarray.Dataset`` of the public API (``to_dataset``) and the case file, written
 with netCDF4 directly (``write``).
 
@@ -32,7 +32,7 @@ def _attrs(table, name):
 
 @dataclass(frozen=True)
 class CaseResult:
-    """Scalars (keys of output.SCALARS, as 0-d int32 or float64 arrays), global attributes
+    """Scalars (keys of io/case_schema.SCALARS, as 0-d int32 or float64 arrays), global attributes
     and, on request, fields on the mesh (``y``, ``x``) with their coordinates."""
 
     scalars: dict
@@ -45,7 +45,6 @@ class CaseResult:
     def build(cls, scene, scalars: dict, fields: dict | None, mesh, effects_run: dict, notes: str, validity: str) -> CaseResult:
         """``scalars`` must hold exactly the keys of SCALARS; ``scene`` is the scene as
         requested (its canonical YAML and hash identify the case)."""
-
         missing = set(SCALARS) - set(scalars)
         if missing:
             raise KeyError(f"case output lacks {sorted(missing)}")
@@ -84,8 +83,6 @@ class CaseResult:
         """Write the case file atomically (a killed process never leaves a file that looks
         complete) with a CF ``history`` line; NaN is the fill value of data variables, the
         coordinates have none (CF 2.5.1), as output.write_case writes a Dataset."""
-
-
         with atomic_path(path, make_parents=True) as tmp, netCDF4.Dataset(tmp, "w", format="NETCDF4") as nc:
             nc.setncatts({**self.attrs, "history": history_line(self.attrs.get("history"))})
             for name, value in self.scalars.items():

@@ -1,4 +1,4 @@
-"""What a case holds (DESIGN.md "Output of one case": names, units, long names of its
+"""What a case holds (docs/DESIGN.md "Output of one case": names, units, long names of its
 variables; case_result.CaseResult assembles and writes one) and the atomic, CF-1.10
 netCDF writer of a Dataset (a case as a Dataset, a figure's collected data)."""
 
@@ -57,8 +57,6 @@ INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes", "
 def history_line(previous: str | None = None) -> str:
     """CF ``history``: ``previous`` with a line appended saying when and by what this file
     is written."""
-
-
     stamp = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     line = f"{stamp} written by lubecontact {package_version()} ({Path(sys.argv[0]).name or 'python'})"
     return f"{previous}\n{line}" if previous else line
@@ -75,7 +73,6 @@ def cf_ready(dataset: xr.Dataset) -> tuple[xr.Dataset, dict]:
 
 def write_case(dataset: xr.Dataset, path) -> None:
     """Write atomically: a killed process never leaves a file that looks complete."""
-
     dataset, encoding = cf_ready(dataset)
     with atomic_path(path, make_parents=True) as tmp:
         dataset.to_netcdf(tmp, encoding=encoding)

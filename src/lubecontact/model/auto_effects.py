@@ -1,4 +1,4 @@
-"""``effects: auto``: simulate only the effects a scene calls for (DESIGN.md "Effects").
+"""``effects: auto``: simulate only the effects a scene calls for (docs/DESIGN.md "Effects").
 
 Every effect of the model is a switch (``scene.effects``) and a disabled effect costs
 nothing: :class:`lubecontact.model.solve.Model` builds only what is on. With ``effects: auto``
@@ -13,15 +13,15 @@ full solves times SAFETY, and the decisions were checked against full solves
 
 Estimates (w' = F/L, E'_H = 2 E* in Hamrock's convention, u_m = U/2):
 
-- Rigid film: Martin (1916) h_0 = 4.9 mu u_m R/w' (physics.md section 4), and the rigid
+- Rigid film: Martin (1916) h_0 = 4.9 mu u_m R/w' (docs/physics.md section 4), and the rigid
   smooth cylinder on the scene's own domain (``film_estimate``): 1D Reynolds with the
   Reynolds exit condition integrated on the truncated inlet (``reynolds_line_load``), and
   for a finite cylinder (ny > 1) the side leakage of Ocvirk's short bearing,
   W_s = (mu U L^3/4)(1/h_0^2 - 1/h_in^2), combined as 1/W = 1/W_long + 1/W_short.
-- Isoviscous-elastic film (physics.md section 5: Hamrock's H_min = 3.10 g_E^0.8, Moes
+- Isoviscous-elastic film (docs/physics.md section 5: Hamrock's H_min = 3.10 g_E^0.8, Moes
   1992): g_E = W'/sqrt(U'), U' = mu u_m/(E'_H R), W' = w'/(E'_H R); the reference table
   of H_min(g_E) below g_E = 50 (``elastic_film_factor``).
-- Hertz line contact (Johnson 1985, Ch. 4; physics.md section 6): b = sqrt(4 w' R/(pi E*)),
+- Hertz line contact (Johnson 1985, Ch. 4; docs/physics.md section 6): b = sqrt(4 w' R/(pi E*)),
   approach of a strip of length L, delta_H = (2 w'/(pi E*))(ln(2L/b) + 1/2); the line
   load's deflection scale delta_w = 2 w'/(pi E*) (Johnson eq. 2.25).
 - Rigid dry rough contact (``dry_contact``): the cylinder on the rough law (Eqs. 11-17)
@@ -243,7 +243,6 @@ def fluid_share_bound(scene, dry: DryContact, sigma: float) -> tuple[float, floa
     factors, Eqs. 1-2); 1D Reynolds with the Reynolds exit condition (no side leakage); the
     Couette shear mu U phi_f/h of Patir & Cheng (1979) as the solver's friction.
     """
-
     s = scene
     radius, length, force = s.geometry.radius, s.geometry.length, s.operating.force
     mu, speed = s.lubricant.viscosity, s.operating.speed

@@ -24,6 +24,5 @@ def memoised(key, build):
 
 def contact_table(scene):
     """RoughContact.from_scene(scene), cached on the sections it is built from."""
-
     key = ("table", scene.roughness, scene.cylinder, scene.block, scene.effects.plasticity)
     return memoised(key, lambda: RoughContact.from_scene(scene))

@@ -124,7 +124,7 @@ def is_fine_warm_start(model: Model, initial: WarmStart | None) -> bool:
     """Whether ``initial`` is a converged solution on this very mesh (a sweep's previous
     point): it is then a better start than a coarse-mesh solve, which is skipped. A 26-speed
     Table 1 sweep at 51^2 then costs 0.65-0.7 of 26 cold solves instead of 0.96, with the
-    same answers to 2e-7 (bench/RESULTS.md)."""
+    same answers to 2e-7 (the sweep row of bench/run.py)."""
     return initial is not None and initial.delta is not None and np.size(initial.delta) == model.mesh.nx * model.mesh.ny
 
 
@@ -137,7 +137,6 @@ def nested_start(model: Model, tolerance: float, initial: WarmStart | None = Non
     coarse level does not converge or cannot bracket its force balance, ``initial`` is
     returned: the fine mesh then starts from it and is judged on its own.
     """
-
     coarse = model.coarsened(NESTED_COARSEST) if model.contact is not None else None
     if coarse is None or is_fine_warm_start(model, initial):
         return initial

@@ -37,11 +37,9 @@ def content_law(model: Model):
     """h -> (h_T, dh_T/dh): Patir-Cheng expected gap, or with flow factors between surfaces of
     unequal roughness (roughness.split != 0.5) the Couette gap h_T + sigma phi_s of the shear
     flow factor (shear_factors.couette_gap)."""
-
     scene = model.scene
     sigma = model.contact.sigma if model.contact is not None else None
     if sigma is not None and scene.effects.flow_factors and scene.roughness.split != 0.5:
-
 
         return partial(couette_gap, sigma=sigma, split=scene.roughness.split)
     return lambda h: expected_gap_and_slope(h, sigma)
@@ -50,7 +48,6 @@ def content_law(model: Model):
 def coefficient_law(model: Model):
     """h -> (k, dk/dh): Patir-Cheng's Poiseuille coefficient down to percolation (rough
     surfaces), or h^3/(12 mu) (smooth)."""
-
     scene = model.scene
     law = poiseuille_coefficient_and_slope if model.contact is None else percolating_coefficient_and_slope
     sigma = None if model.contact is None else model.contact.sigma

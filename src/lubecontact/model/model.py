@@ -67,7 +67,6 @@ class Model:
         """The same model on the mesh with every other node (same domain) in each direction
         longer than ``coarsest`` nodes; None when there is none, or for a transient step
         (its squeeze history lives on this mesh; it starts from the previous step)."""
-
         if self.squeeze is not None:
             return None
 

@@ -1,9 +1,9 @@
 """Newton step of the deformation with the contact's and the fluid's stiffness (steady and
 transient solves).
 
-The coupled iteration (solver.coupled_solve) updates the deformation delta -> K(p + p_c)
+The coupled iteration (model/coupling.coupled_solve) updates the deformation delta -> K(p + p_c)
 at the balanced position. Preconditioned with the contact's stiffness alone
-(solver.contact_newton_step) the fixed point converges linearly, at a rate set by the
+(model/newton.contact_newton_step) the fixed point converges linearly, at a rate set by the
 fluid's stiffness (0.2-0.4 per iteration on Table 1, 8-11 iterations on a 201^2 mesh). In a
 transient step the squeeze term makes the fluid pressure respond to the film as c0 ~ 1/dt,
 so at short steps that rate exceeds 1. Here the linearisation includes the fluid: with
@@ -16,7 +16,7 @@ sum dA P'(v + dz) = 0,
 
 solved matrix-free by GMRES (each product: a few array operations on the faces, one
 back-substitution with the LU factors of the Reynolds solve and one FFT; 3-4 products per
-step on Table 1). Without fluid pressure it is solver.contact_newton_step's equation.
+step on Table 1). Without fluid pressure it is model/newton.contact_newton_step's equation.
 
 The fluid pressure is a piecewise smooth function of the film (the cavitated set changes
 with it), so near a fold full Newton steps can cycle between sets; once they stall the
@@ -42,11 +42,10 @@ def fluid_pressure_response(model, state):
     cavitated set: dp_F = -A_FF^{-1} (dr/dh v)_F, r = A(k) p - b(h_T) (+ dA dh_T/dt in a
     transient step) the finite-volume residual of reynolds.reynolds_system, differentiated
     face by face: with rough surfaces k and h_T of each face are evaluated at the face's
-    film (solver.fluid_faces, percolation.py), with smooth ones they are face means of the
-    nodal values (solver.fluid_slopes).
+    film (model/fluid_film.fluid_faces, percolation.py), with smooth ones they are face means of the
+    nodal values (model/fluid_film.fluid_slopes).
     A_FF^{-1} is applied with the LU factors the Reynolds solve used (its own or a nearby
     matrix's: an approximate Newton step, judged by the outer loop)."""
-
     mesh, solution, squeeze = model.mesh, state.reynolds, model.squeeze
     speed = model.scene.operating.speed
     free = interior_nodes(mesh.shape, mesh.line) & ~solution.cavitated

@@ -20,10 +20,9 @@ def central_value(mesh: Mesh, field: np.ndarray) -> float:
 
 def point_outputs(model: Model, state: State) -> tuple[dict, list[str]]:
     """(outputs, notes) of a solved state, as a case reports them: the electrical path
-    (electrical.path), real contact area, friction (DESIGN.md; the shear resists the sliding
+    (electrical.path), real contact area, friction (docs/DESIGN.md; the shear resists the sliding
     whichever way the block moves), loads and films. Shared by solve() and each instant of a
     transient (unsteady/series.py)."""
-
     scene, mesh = model.scene, model.mesh
     area = mesh.nodal_area
     path = electrical_path(scene, mesh, model.contact, state.film)

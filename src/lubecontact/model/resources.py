@@ -1,6 +1,6 @@
 """What a solve will cost before it starts: memory and wall time from the measured laws.
 
-Measured on the project's machine (bench/RESULTS.md; peak RSS of ``lubecontact solve`` at
+Measured on the project's machine (bench/run.py; peak RSS of ``lubecontact solve`` at
 1 m/s, one core): 51^2 nodes 222 MB and ~0.1 s, 201^2 308 MB and ~1.1 s, 301^2 359 MB and
 3.7 s, 501^2 638 MB and 10.9 s, and 2000^2 (issue 13) above 10.8 GB. The memory law is an
 upper envelope of those points: the interpreter and libraries (~220 MB) plus 2.7 kB per

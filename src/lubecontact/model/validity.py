@@ -1,9 +1,9 @@
-"""Where a case leaves the ground its sub-models stand on (DESIGN.md Part II "Validity").
+"""Where a case leaves the ground its sub-models stand on (docs/DESIGN.md "Validity").
 
 A solved case is checked against the range of each sub-model it used; every breach is a
 flag (its name in the case's ``validity`` attribute, ``valid`` = 0) and a note with the
 numbers. Nothing is silent, nothing is refused: the paper's own figures leave several of
-these grounds at low speed (physics.md sections 9 and 11.6).
+these grounds at low speed (docs/physics.md sections 9 and 11.6).
 
 Flags:
 
@@ -17,7 +17,7 @@ Flags:
   under a Hertzian line load, p0 = 1.67 S_y (von Mises, Johnson 1985 section 4.2), with
   S_y of the softer body: the bodies are modelled elastic on the macro scale.
 - ``bandwidth``: Nayak's bandwidth alpha < 2. For a Gaussian isotropic surface
-  eta R_peak sigma = 0.020358 sqrt(alpha) (McCool 1986; physics.md section 18), so the
+  eta R_peak sigma = 0.020358 sqrt(alpha) (McCool 1986; docs/physics.md section 18), so the
   scene's eta, R_peak, sigma imply alpha; below 2 the summit statistics of GW have no
   surface behind them (the CLI warns on loading such a scene: ``scene_warnings``).
 - ``flow_factor_range``: h/sigma < 0.5 where the fluid is pressurised: Patir-Cheng's flow

@@ -3,7 +3,7 @@
 The solve's BLAS calls are small (vector norms and dots of GMRES and Anderson, SuperLU's
 dense kernels of a 2-D problem), so threads only add synchronisation; where other
 processes share the cores (a parallel workflow) an idle-spinning OpenBLAS thread made each
-call 10-100 times slower (measured: bench/HISTORY.md). The caller's setting is restored
+call 10-100 times slower (measured on the 2-core project machine). The caller's setting is restored
 after the block.
 """
 

@@ -1,6 +1,6 @@
 """Mass-conserving (Jakobsson-Floberg-Olsson) cavitation of the averaged Reynolds equation.
 
-physics.md section 16. The Reynolds (Swift-Stieber) condition of reynolds.py is right for a
+docs/physics.md section 16. The Reynolds (Swift-Stieber) condition of reynolds.py is right for a
 steady convergent-divergent gap but loses mass where a film re-forms. JFO (Elrod & Adams
 1974, Elrod 1981) carries a film content theta (the fraction of the expected gap h_T the
 lubricant fills) and solves, with the flux q = -k grad p + (U/2) theta h_T e_x,

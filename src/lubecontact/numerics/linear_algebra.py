@@ -22,8 +22,8 @@ from scipy.sparse.linalg import splu
 # back-substitutions (2.6k-160k unknowns; before the nested start was smoothed
 # (projected_smoothing), 12 left Table 1 at 201^2 with 2-4 factorisations on the finest
 # mesh instead of 4-5 and 8 or 20 were no faster; after it, 30 or 80 were slower at
-# 201 x 853, where the corrections of 14-29 nodes are rebuilt at every step:
-# bench/RESULTS.md).
+# 201 x 853, where the corrections of 14-29 nodes are rebuilt at every step; counts of
+# bench/run.py).
 REUSE_CG_TOLERANCE = 1e-12
 
 

@@ -12,7 +12,7 @@ inlet/outlet zone where the undeformed gap (Eq. 4) is below ten roughness height
 film a fluid can build. The domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the
 fluid pressure builds, than downstream, where it cavitates.
 
-The inlet follows the film (physics.md section 17): a film h fed from an inlet that ends at
+The inlet follows the film (docs/physics.md section 17): a film h fed from an inlet that ends at
 X = x_min/sqrt(2 R h) is short of the fully flooded one by ~2.5/X^2 (lubecontact.physics.inlet),
 and the resistance is exponential in the film. So the automatic inlet reaches at least
 INLET_FILM_LENGTHS x sqrt(2 R h_M), h_M Martin's rigid film of the scene's speed (thicker

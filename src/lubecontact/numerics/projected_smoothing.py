@@ -31,7 +31,7 @@ import numpy as np
 # O(n) and a factorisation of the 2D block about O(n^1.5), so the smoothing stays a fixed
 # share of one factorisation (35 sweeps on 116k unknowns: about 0.1 s, a factorisation
 # 0.35 s), while the distance the free boundary must move, in nodes, grows with the mesh.
-# Measured on Table 1 (4 speeds, 51^2 to 401^2; bench/RESULTS.md, "projected smoothing"):
+# Measured on Table 1 (4 speeds, 51^2 to 401^2, counts of bench/run.py):
 # a fixed 10 sweeps left 401^2 with a second factorisation of the finest mesh at 0.1-10 m/s,
 # 0.1 per side node with one; 0.2 was no better at 401^2.
 GUESS_SWEEPS_PER_SIDE_NODE = 0.1

@@ -137,7 +137,7 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_
     expected_gap = h_T (ny, nx) m, coefficient = k (ny, nx) m^3/(Pa s), speed = U m/s;
     ``faces`` (percolation.FaceFilm): k and h_T of the faces instead of nodal means. A node
     whose faces all carry no flow (sealed) is not an unknown and stays at p = 0.
-    ``squeeze_rate``: dh_T/dt (ny, nx) m/s of a transient (physics.md section 14): each
+    ``squeeze_rate``: dh_T/dt (ny, nx) m/s of a transient (docs/physics.md section 14): each
     cell's volume changes by dA dh_T/dt, so its net outflow is w = A p - b + dA dh_T/dt
     (the squeeze term of the time-dependent Reynolds equation); None: steady.
     """

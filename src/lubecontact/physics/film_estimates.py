@@ -22,7 +22,7 @@ HAMROCK_COEFFICIENT, HAMROCK_EXPONENT = 3.10, 0.8
 MARTIN_FRICTION = 7.283  # its Couette friction on the plane over the full film: F' / (mu u_m sqrt(2R/h0))
 
 
-# physics.md section 5: H_min = (h_min/R)(W'/U') of the isoviscous-elastic line contact
+# docs/physics.md section 5: H_min = (h_min/R)(W'/U') of the isoviscous-elastic line contact
 # (team reference solver, Reynolds condition), -> 3.10 g_E^0.8 (Hamrock) for g_E >= 20.
 EI_G = np.array([0.324, 0.5, 0.75, 1.03, 2.0, 3.24, 5.0, 10.0, 20.0, 50.0])
 
@@ -62,13 +62,13 @@ def reynolds_line_load(x, expected_gap, coefficient, speed: float) -> float:
 
 
 def martin_film(scene) -> float:
-    """Rigid infinite-cylinder film h_0 = 4.9 mu (U/2) R L / F, m (Martin 1916; physics.md 4)."""
+    """Rigid infinite-cylinder film h_0 = 4.9 mu (U/2) R L / F, m (Martin 1916; docs/physics.md section 4)."""
     s = scene
     return MARTIN * s.lubricant.viscosity * 0.5 * s.operating.speed * s.geometry.radius * s.geometry.length / s.operating.force
 
 
 def elastic_film_factor(g_e: float) -> float:
-    """H_min(g_E)/4.9: isoviscous-elastic over rigid line-contact film (physics.md section 5).
+    """H_min(g_E)/4.9: isoviscous-elastic over rigid line-contact film (docs/physics.md section 5).
 
     Interpolated (log-log) in the reference table, Hamrock's 3.10 g_E^0.8 beyond g_E = 50,
     and the table's first value (1.4 % above rigid) below g_E = 0.324.
@@ -88,7 +88,7 @@ def deflection_scale(scene) -> float:
 
 def hertz_approach(scene) -> float:
     """Approach of a Hertzian strip of length L, (2 w'/(pi E*))(ln(2L/b) + 1/2), m
-    (physics.md section 6; the datum of lubecontact.physics.deformation's line mode)."""
+    (docs/physics.md section 6; the datum of lubecontact.physics.deformation's line mode)."""
     return deflection_scale(scene) * (math.log(2.0 * scene.geometry.length / hertz_half_width(scene)) + 0.5)
 
 

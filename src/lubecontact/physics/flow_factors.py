@@ -12,7 +12,7 @@ which tends to h for H >> 1 and to 0+ (never negative) for H -> -inf.
 
 Eq. (2) is fitted for H > 0.5 only; it turns negative below H ~ -0.19 and h^3 turns negative
 with h. Below H = 0.5 the Poiseuille coefficient follows the expected gap
-(DESIGN.md, "Physics: conventions"):
+(docs/DESIGN.md, "Physics: conventions"):
 
     k(H) = phi_x(H) h^3 / (12 mu)                       H >= 0.5
     k(H) = k(0.5) [h_T(H) / h_T(0.5)]^3                 H <  0.5
@@ -21,8 +21,8 @@ continuous at H = 0.5, positive, and monotone in H. Smooth surfaces (sigma None 
 ``asperity_contact`` off) use h itself with phi = 1.
 
 The coupled solver uses, for rough surfaces, the law down to percolation instead
-(``percolating_coefficient_and_slope``, physics.md section 15: zero flow at h = 0 up to a
-leak); the regularised k above remains the estimate of effects.py's automatic decisions.
+(``percolating_coefficient_and_slope``, docs/physics.md section 15: zero flow at h = 0 up to a
+leak); the regularised k above remains the estimate of model/auto_effects.py's automatic decisions.
 """
 
 from __future__ import annotations
@@ -146,7 +146,7 @@ def poiseuille_coefficient(h, sigma, viscosity, flow_factors=True):
     return poiseuille_coefficient_and_slope(h, sigma, viscosity, flow_factors)[0]
 
 
-# Below the percolation threshold (physics.md section 15) the lubricant sits in closed pockets
+# Below the percolation threshold (docs/physics.md section 15) the lubricant sits in closed pockets
 # and the averaged film stops conducting. Threshold: the mean gap h = 0, where the open part
 # of a Gaussian gap {gap > 0} covers half the plane, the 2D level-set percolation threshold
 # of a symmetric random field (Zallen & Scher 1971, Phys. Rev. B 4:4471; the effective-medium
@@ -158,8 +158,7 @@ def poiseuille_coefficient(h, sigma, viscosity, flow_factors=True):
 # clusters by sliding): k never falls below SEALED_LEAKAGE k(0.5). In steady state any leak
 # equilibrates the pockets with the film around them, so the answer is the limit of a
 # vanishing leak: on Table 1 (line mode, 51-201 nodes, 0.01 m/s) the fluid load changes by
-# < 0.9 % between leakages 1e-2 and 1e-4 and by < 0.1 % between 1e-3 and 1e-4
-# (bench/RESULTS_flow.md).
+# < 0.9 % between leakages 1e-2 and 1e-4 and by < 0.1 % between 1e-3 and 1e-4.
 SEALED_LEAKAGE = 1e-3
 
 

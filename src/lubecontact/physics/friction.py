@@ -1,9 +1,9 @@
 """Friction of the sliding contact (the paper plots it, Figs. 5, 7, 9, 11, but defines it nowhere).
 
-DESIGN.md convention: f = [mu_b F_cont + int tau dA] / F, with the boundary friction
+docs/DESIGN.md convention: f = [mu_b F_cont + int tau dA] / F, with the boundary friction
 coefficient mu_b = interface.boundary_friction on the load the asperities carry and the
 viscous shear on the moving block, with Patir & Cheng's (1979) shear stress factors
-(physics.md section 3, shear_factors.py) between rough surfaces:
+(docs/physics.md section 3, shear_factors.py) between rough surfaces:
 
     tau = mu U phi_f / h + phi_fp (h / 2) dp/dx        (Couette + Poiseuille)
 
@@ -51,7 +51,6 @@ def shear_stress(film, sigma, pressure_gradient, viscosity: float, speed: float,
     ``film`` h (m); ``sigma`` None or 0 for smooth surfaces (plain mu U/h + (h/2) dp/dx);
     ``split`` the block's share of sigma^2 (phi_fs = (1 - 2 split) Phi_fs, 0 when equal).
     """
-
     if sigma is None or sigma == 0:
         return viscosity * speed / film, 0.5 * film * pressure_gradient
     H = film / sigma
@@ -78,5 +77,5 @@ def fluid_shear_force(mesh, expected_gap, pressure, cavitated, viscosity: float,
 
 
 def friction_coefficient(boundary_friction: float, contact_force: float, shear_force: float, applied_force: float) -> float:
-    """f of DESIGN.md: (mu_b F_cont + F_shear) / F."""
+    """f of docs/DESIGN.md: (mu_b F_cont + F_shear) / F."""
     return (boundary_friction * contact_force + shear_force) / applied_force

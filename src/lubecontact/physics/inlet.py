@@ -1,6 +1,6 @@
-"""How long the inlet must be for the film it feeds (physics.md section 17).
+"""How long the inlet must be for the film it feeds (docs/physics.md section 17).
 
-Martin's rigid cylinder (physics.md section 4) on a domain whose inlet ends at
+Martin's rigid cylinder (docs/physics.md section 4) on a domain whose inlet ends at
 X_in = x_min / sqrt(2 R h_0) (p = 0 there, Reynolds exit condition) carries less load at a
 given film than the fully flooded one; at a given load its film is thinner by the factor
 

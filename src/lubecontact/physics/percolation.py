@@ -1,19 +1,19 @@
-"""The averaged film on the faces of the finite volumes, down to percolation (physics.md §15).
+"""The averaged film on the faces of the finite volumes, down to percolation (docs/physics.md section 15).
 
 Near contact the Poiseuille coefficient vanishes at the percolation threshold
 (flow_factors.percolating_coefficient_and_slope). A face between a node that conducts and
 one that has sealed must then close continuously as the film reaches the threshold, not
 drop from k/2 to 0 when the second node seals (arithmetic means of nodal k, reynolds.py):
 a jump of the sealed set moves the fluid load by a finite amount and the coupled iteration
-cycles (bench/RESULTS_flow.md). So with rough surfaces each face gets the film halfway
+cycles (seen on Table 1 near percolation). So with rough surfaces each face gets the film halfway
 between its nodes, h_f = (h_a + h_b)/2, and is evaluated there:
 
     T_f = k(h_f) (dy/dx or dx/dy),    Couette flux of an x face (U/2) h_T(max(h_f, 0)) dy
 
 The Couette content is frozen at its threshold value below h_f = 0: lubricant sealed in
 closed pockets is incompressible and is carried through the contact with the volume it was
-sealed with (solver.FLUID_FILM_FLOOR_SIGMAS). Both are second-order accurate like the
-nodal means (and closer to the mesh limit on Table 1: bench/RESULTS_flow.md).
+sealed with (model/fluid_film.FLUID_FILM_FLOOR_SIGMAS). Both are second-order accurate like
+the nodal means (and closer to the mesh limit on Table 1).
 """
 
 from __future__ import annotations

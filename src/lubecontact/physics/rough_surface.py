@@ -108,7 +108,6 @@ def gaussian_moment(n, t):
     Greenwood-Williamson elastic limit: p_c = (4/3) eta E* R^(1/2) s^(3/2) F_3/2(d/s),
     A_r/A_n = pi eta R s F_1(d/s). Meant for moderate |t| (tests, checks).
     """
-
     t = np.asarray(t, dtype=float)
     return gamma(n + 1.0) / math.sqrt(2.0 * math.pi) * np.exp(-0.25 * t**2) * pbdv(-n - 1.0, t)[0]
 

@@ -1,4 +1,4 @@
-"""Patir & Cheng's (1979) shear stress factors and shear flow factor (physics.md section 3).
+"""Patir & Cheng's (1979) shear stress factors and shear flow factor (docs/physics.md section 3).
 
 Patir & Cheng, "Application of average flow model to lubrication between rough sliding
 surfaces", J. Lubr. Technol. 101 (1979) 220. For Gaussian heights of combined standard
@@ -22,7 +22,7 @@ surface of a film whose surfaces slide at u1, u2 is
   Here surface 1 is the sliding block (u1 = U) and surface 2 the cylinder (u2 = 0), and
   ``roughness.split`` = V_r1, the block's share of sigma^2: the Couette flux becomes
   (U/2)(h_T + sigma phi_s) (``couette_gap``) and the shear on the block gains
-  mu U phi_fs/h (upper signs of physics.md section 3 for surface 1).
+  mu U phi_fs/h (upper signs of docs/physics.md section 3 for surface 1).
 """
 
 from __future__ import annotations
@@ -126,7 +126,6 @@ def couette_gap(h, sigma, split):
     """(h_T + sigma phi_s, its slope in h): the gap whose Couette flux (U/2) x it carries the
     lubricant between a block with the share ``split`` of sigma^2 and the cylinder, with
     phi_s = (2 split - 1) Phi_s(h/sigma) (Patir & Cheng 1979, gamma = 1)."""
-
     H = np.asarray(h, dtype=float) / sigma
     weight = 2.0 * split - 1.0
     gap = expected_gap(h, sigma) + sigma * weight * shear_flow_factor_unit(H)

@@ -17,7 +17,6 @@ REGIME_MARKERS = {"boundary": "s", "mixed": "o", "full film": "^"}
 def plot_accuracy_cost(table: xr.Dataset):
     """Figure ``accuracy_cost``: relative error against solve time, one panel per quantity,
     one line per speed (regime), each point labelled with its mesh (nodes a side)."""
-
     quantities = table.attrs["quantities"].split(",")
     fig = Figure(figsize=(4.6 * len(quantities) + 0.8, 4.4), layout="constrained")
     axes = fig.subplots(1, len(quantities), squeeze=False)[0]

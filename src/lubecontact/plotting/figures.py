@@ -193,7 +193,6 @@ def highest_closed_speed(ds: xr.Dataset) -> xr.DataArray:
     below the scene's interface.open_resistance, from the first opening along speed,
     interpolated in log R against log U between the last closed and the first open speed.
     NaN where the contact is open at the lowest speed; +inf where it never opens."""
-
     threshold = yaml.safe_load(str(ds["scene"].values.flat[0]))["interface"]["open_resistance"]
     resistance = ds["contact_resistance"].transpose(..., "speed")
     speeds = ds["speed"].values
@@ -217,7 +216,6 @@ def highest_closed_speed(ds: xr.Dataset) -> xr.DataArray:
 def render_speed_limit(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     """A map of :func:`highest_closed_speed` over the two swept dimensions (``plot['map']``:
     [x dimension, y dimension]), log colour scale, each cell labelled with its value."""
-
     limit = highest_closed_speed(ds)
     x_dim, y_dim = plot.get("map") or [d for d in limit.dims]
     limit = limit.transpose(y_dim, x_dim)

@@ -22,7 +22,6 @@ from matplotlib.figure import Figure
 
 def _rest_from(ds) -> float:
     """Instant the motion stopped: stop_time + ramp of the stop scene."""
-
     motion = yaml.safe_load(ds.attrs["scene"]).get("motion", {})
     return float(motion.get("stop_time", 0.0)) + float(motion.get("ramp", 0.0))
 

@@ -1,4 +1,4 @@
-"""Scenes: the validated, frozen description of one physical problem (DESIGN.md "Scene schema").
+"""Scenes: the validated, frozen description of one physical problem (docs/DESIGN.md "Scene schema").
 
 A scene is read from YAML (or a mapping), completed with the paper's Table 1 defaults,
 checked, and frozen. SI units throughout. Each section is a frozen dataclass whose fields
@@ -37,7 +37,7 @@ AUTO = "auto"
 # it (PyPI's wheels do), which writes the same text faster.
 _SAFE_DUMPER = getattr(yaml, "CSafeDumper", yaml.SafeDumper)
 
-# McCool (1986): sigma_s^2 = sigma^2 - 3.717e-4/(eta R_peak)^2 (physics.md section 2).
+# McCool (1986): sigma_s^2 = sigma^2 - 3.717e-4/(eta R_peak)^2 (docs/physics.md section 2).
 MCCOOL_VARIANCE_CONSTANT = 3.717e-4
 # Keys a measured surface (roughness.surface) sets; a scene with a surface must not set them.
 SURFACE_SETS = ("sigma", "asperity_density", "asperity_radius")
@@ -367,7 +367,7 @@ class Operating(_Section):
 
 @dataclass(frozen=True)
 class Effects(_Section):
-    """Physical effects to simulate (DESIGN.md "Effects"); ``effects: auto`` turns all on
+    """Physical effects to simulate (docs/DESIGN.md "Effects"); ``effects: auto`` turns all on
     and leaves ``auto`` set, so the canonical form keeps saying ``auto``. Setting any one
     flag (``effects.hydrodynamics=false``) makes the effects explicit: auto ends, the
     other flags stay on. The electrical-path effects (macro_constriction,
@@ -438,7 +438,7 @@ class _SpeedTable:
 
 @dataclass(frozen=True)
 class Motion(_Section):
-    """What the block does in time (DESIGN.md Part II "Time"; lubecontact.transient). The
+    """What the block does in time (docs/DESIGN.md "Time"; lubecontact.transient). The
     default (steady at operating.speed) is left out of the canonical form, so scenes
     without ``motion:`` keep their hash."""
 

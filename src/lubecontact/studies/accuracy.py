@@ -149,7 +149,6 @@ RECORDED = ("converged", "iterations", "fluid_load_fraction")
 def timed_solve(scene, repeats: int = 1, budget: float = math.inf):
     """Solve ``scene`` up to ``repeats`` times while the time spent stays below ``budget``
     seconds (at least once); returns (first Dataset, median solve_time s, all times)."""
-
     times = []
     first = None
     while len(times) < max(1, repeats) and (not times or sum(times) < budget):
@@ -395,5 +394,3 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
 
 
 # --- the figure ----------------------------------------------------------------------------
-
-

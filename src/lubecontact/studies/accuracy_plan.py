@@ -41,7 +41,6 @@ def study_spec(path, overrides: Mapping | None = None) -> dict:
     """The study of ``path`` (config/accuracy.yaml) deep-merged with ``overrides``, checked:
     unknown keys, fewer than three meshes, unknown quantities or non-positive speeds are
     refused with a message naming the key. Plain Python (lists, dicts, floats) throughout."""
-
     spec = merge(read_yaml(path) or {}, overrides or {})
     unknown = sorted(set(spec) - STUDY_KEYS)
     if unknown:

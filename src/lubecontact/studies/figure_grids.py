@@ -263,7 +263,6 @@ def _scene(base, overrides: Mapping, where: str):
 def expand(figure: str, spec: Mapping, root=".") -> FigureGrid:
     """All cases of one figure grid, each scene validated now (a bad value fails here,
     before anything runs, with the figure, the key and the value in the message)."""
-
     where = f"figure {figure}"
     if "scene" not in spec:
         raise GridError(f"{where}: no base scene (key 'scene')")
@@ -439,5 +438,3 @@ def sources_fingerprint(paths: Iterable) -> str:
 
 
 # --- collect -----------------------------------------------------------------------------------
-
-

@@ -23,7 +23,6 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
     """
     from tqdm.auto import tqdm
 
-
     speeds = np.asarray(sorted(float(s) for s in speeds))
     if speeds.size == 0 or np.any(~np.isfinite(speeds)) or np.any(speeds < 0):
         raise ValueError(f"speeds must be finite and >= 0 m/s, got {speeds.tolist()}")

@@ -60,8 +60,6 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
 
 def key_units(dotted: str) -> str:
     """The unit of a scene key (its schema rule), e.g. 'Pa s' for lubricant.viscosity."""
-
-
     section, name = dotted.split(".")
     rule = next(f for f in fields(SECTIONS[section]) if f.name == name).metadata["rule"]
     return getattr(rule, "unit", "1")

@@ -1,4 +1,4 @@
-"""Roughness from a measured surface (physics.md section 18; McCool 1986, Wear 107:37).
+"""Roughness from a measured surface (docs/physics.md section 18; McCool 1986, Wear 107:37).
 
 From a height map or profile to the three numbers the statistical contact model needs
 (sigma, eta, R_peak) and the bandwidth alpha that says whether the Greenwood-Williamson

@@ -1,5 +1,5 @@
 """Greenwood-Williamson parameters from spectral moments (McCool 1986, Wear 107:37;
-physics.md sections 2 and 18).
+docs/physics.md sections 2 and 18).
 
     eta = m4 / (6 pi sqrt(3) m2)        summit density, 1/m^2
     R_peak = 0.375 sqrt(pi / m4)        mean summit radius, m
@@ -26,7 +26,7 @@ from lubecontact.surfaces.reading import SurfaceError
 ETA_CONSTANT = 6.0 * math.pi * math.sqrt(3.0)  # eta = m4 / (6 pi sqrt(3) m2)
 RADIUS_CONSTANT = 0.375  # R_peak = 0.375 sqrt(pi / m4)
 SUMMIT_VARIANCE_FACTOR = 0.8968  # sigma_s^2 = sigma^2 (1 - 0.8968 / alpha)
-GW_ALPHA_MIN = 2.0  # below: outside the Greenwood-Williamson picture (physics.md section 18)
+GW_ALPHA_MIN = 2.0  # below: outside the Greenwood-Williamson picture (docs/physics.md section 18)
 ISOTROPY_TOLERANCE = 1.25  # gamma within [1/1.25, 1.25] is reported as isotropic (gamma = 1 flow factors)
 
 

@@ -1,4 +1,4 @@
-"""Spectral moments of a surface: m0 = <z^2>, m2 = <z'^2>, m4 = <z''^2> (physics.md section 18).
+"""Spectral moments of a surface: m0 = <z^2>, m2 = <z'^2>, m4 = <z''^2> (docs/physics.md section 18).
 
 How they are taken (McCool 1986 needs them along one direction of an isotropic surface):
 

@@ -55,7 +55,6 @@ def section_yaml(p: McCool, sources: list[str], split: tuple[float, float] | Non
 
 def run(args) -> int:
     """``lubecontact roughness``: 0 done, 2 bad input (the reason on stderr, nothing written)."""
-
     try:
         if len(args.surfaces) > 2:
             raise SurfaceError(f"{len(args.surfaces)} surfaces given; allowed: one, or two for their composite")

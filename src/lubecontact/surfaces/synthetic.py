@@ -4,7 +4,7 @@ A periodic n x n map of side L is the sum of the grid's Fourier modes q = 2 pi (
 with amplitude sqrt(C(|q|) dq^2) and random phases (the seed; phase(-q) = -phase(q), so
 the heights are real), so its mean square is the sum of C dq^2 over the grid and its statistics follow the isotropic areal power
 spectral density C(q) (m^4, m0 = integral of C over the q-plane), with no sampling noise
-in the amplitudes. Profile moments of such a surface (physics.md section 18):
+in the amplitudes. Profile moments of such a surface (docs/physics.md section 18):
 m0 = 2 pi int C q dq, m2 = pi int C q^3 dq, m4 = (3 pi / 4) int C q^5 dq.
 """
 

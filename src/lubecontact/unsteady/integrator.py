@@ -1,4 +1,4 @@
-"""Implicit time integration of the quasi-static lubricated contact (physics.md section 14).
+"""Implicit time integration of the quasi-static lubricated contact (docs/physics.md section 14).
 
 At each instant the cylinder is in force balance (no inertia): F = F_contact(h) + F_fluid,
 where the fluid pressure solves the averaged Reynolds equation with the squeeze term,
@@ -12,7 +12,7 @@ BDF2 difference (BDF1 on the first step and after a breakpoint of the motion)
 
 which enters the Reynolds right-hand side as a nodal source and, through c0, the load
 sensitivity, so Newton on z keeps its quadratic convergence. Each step is one coupled
-solve (solver.coupled_solve: force balance, deformation and cavitation as in the steady
+solve (model/coupling.coupled_solve: force balance, deformation and cavitation as in the steady
 model) warm-started from the extrapolated film of the last steps.
 
 Error control (Milne's device): the film predicted by polynomial extrapolation through the
@@ -56,7 +56,7 @@ MAX_STEPS = 20000
 
 @dataclass
 class Squeeze:
-    """dh_T/dt at the new time level as a function of its h_T (solver.Model.squeeze)."""
+    """dh_T/dt at the new time level as a function of its h_T (model/model.Model.squeeze)."""
 
     coefficient: float  # c0, 1/s
     history: np.ndarray  # c1 h_T^n + c2 h_T^{n-1}, m/s
@@ -107,7 +107,7 @@ class Level:
 
     time: float
     speed: float
-    state: object  # solver.State
+    state: object  # model/model.State
     expected_gap: np.ndarray  # h_T used by the squeeze history
     model: Model  # the model of the step (its scene carries the speed)
     diagnostics: Diagnostics

@@ -1,4 +1,4 @@
-"""The block's sliding speed U(t) of a scene's ``motion:`` section (DESIGN.md Part II "Time").
+"""The block's sliding speed U(t) of a scene's ``motion:`` section (docs/DESIGN.md "Time").
 
 Kinds: ``steady`` (U constant), ``stop`` (U until stop_time, a linear ramp to rest, rest),
 ``start`` (from rest, a linear ramp up to U from t = 0), ``oscillation`` (reciprocating

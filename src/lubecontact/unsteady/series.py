@@ -1,4 +1,4 @@
-"""The time series of a transient (DESIGN.md Part II "Time"): the Dataset along ``time``,
+"""The time series of a transient (docs/DESIGN.md "Time"): the Dataset along ``time``,
 ``reconnect_time`` and the oscillation metrics, with CF units on every variable."""
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from lubecontact.model.outputs import point_outputs
 from lubecontact.numerics.reynolds import boundary_flux, interior_nodes
 
 # name: (units, long_name), along ``time``; a quantity that means what it means in a case
-# takes the case's entry (output.SCALARS)
+# takes the case's entry (io/case_schema.SCALARS)
 SERIES = {
     "speed": CASE["speed"],
     "contact_resistance": ("ohm", "electrical contact resistance: the whole path (electrical/path.py)"),
@@ -52,14 +52,13 @@ def open_resistance(scene) -> float:
     return float(scene.interface.open_resistance)
 
 
-# what each instant of a series reports (solver.point_outputs, as a steady case does)
+# what each instant of a series reports (model/outputs.point_outputs, as a steady case does)
 INSTANT = ("contact_resistance", "min_film_thickness", "central_film_thickness", "fluid_force", "contact_force",
            "friction_coefficient", "separation", "real_contact_area")
 
 
 def instant(model, state) -> dict:
     """The per-instant outputs of one level, as the steady solve reports them."""
-
     outputs, _ = point_outputs(model, state)
     return {"speed": model.scene.operating.speed, **{name: outputs[name] for name in INSTANT}}
 
@@ -68,7 +67,6 @@ def volume_balance(level) -> float:
     """Discrete mass balance of the full-film region at one level, from face fluxes
     (reynolds.boundary_flux, independent of the assembled matrix) and the squeeze rate:
     (net outflow + sum dA dh_T/dt) / (the larger of the wedge inlet flow and sum dA |dh_T/dt|)."""
-
     state, model = level.state, level.model
     if state.reynolds is None or level.squeeze_rate is None:
         return 0.0
@@ -126,7 +124,6 @@ def level_rows(levels) -> list[dict]:
 
 def series_dataset(scene, times, rows, scalars: dict, notes: str, peaks=None) -> xr.Dataset:
     """The transient's Dataset: per-level variables (``rows``) along ``time`` and the run's scalars."""
-
     data = {}
     for name, (units, long_name) in SERIES.items():
         dtype = np.int32 if name in INTEGER else np.float64

@@ -1,4 +1,4 @@
-"""``lubecontact.transient(scene)``: the contact along its ``motion:`` (DESIGN.md Part II "Time")."""
+"""``lubecontact.transient(scene)``: the contact along its ``motion:`` (docs/DESIGN.md "Time")."""
 
 from __future__ import annotations
 
@@ -21,7 +21,6 @@ from lubecontact.unsteady.series import instant, level_rows, open_resistance, os
 def _rest_resistance(integrator) -> float:
     """Resistance of the contact at rest: the steady dry solve (no fluid pressure), the
     state every stop settles to."""
-
     if integrator.contact is None:
         return math.inf
     model = Model.assemble(scene_at(integrator.scene, 0.0), integrator.steady_model.mesh, integrator.contact)

@@ -1,4 +1,4 @@
-"""The electrical path of a contact (DESIGN.md Part II "Electrical path", physics.md sections 8, 12, 13).
+"""The electrical path of a contact (docs/DESIGN.md "Electrical path", docs/physics.md sections 8, 12, 13).
 
 - :mod:`.spots`: the paper's model, Holm spots with Cooper's alleviation in parallel (Eqs. 15-17);
 - :mod:`.cluster`: Greenwood's (1966) constriction of the whole cluster of spots, by the

@@ -1,4 +1,4 @@
-"""Greenwood's (1966) cluster (macro) constriction resistance (physics.md section 12).
+"""Greenwood's (1966) cluster (macro) constriction resistance (docs/physics.md section 12).
 
 Greenwood, *Constriction resistance and the real area of contact*, Br. J. Appl. Phys. 17
 (1966) 1621: n spots of radii a_i at centre distances s_ij between two half-spaces of one
@@ -21,7 +21,7 @@ mode, where g does not vary along the cylinder), exactly for that piecewise-cons
 the pair integral of 1/r over two cells is a fourth difference of
 H(X, Y) = X^2 Y/2 asinh(Y/|X|) + X Y^2/2 asinh(X/|Y|) - (X^2 + Y^2)^(3/2)/6
 (d^4 H/dX^2 dY^2 = 1/r), whose self-cell value is the rectangle's closed form of
-physics.md section 12. The sum over cell pairs is the DC-FFT convolution of
+docs/physics.md section 12. The sum over cell pairs is the DC-FFT convolution of
 :class:`lubecontact.physics.deformation.ElasticDeformation` with this kernel in place of Love's:
 in 2D and in line mode alike, since the current spreads in three dimensions even where
 the deformation is taken in plane strain.

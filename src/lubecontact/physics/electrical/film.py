@@ -1,4 +1,4 @@
-"""Conduction through the lubricant film (physics.md section 13), per nominal area.
+"""Conduction through the lubricant film (docs/physics.md section 13), per nominal area.
 
 - Ohmic film: a lubricant of resistivity rho_f (ohm m) and thickness t conducts
   1/(rho_f t) per nominal area (S/m^2).
@@ -37,7 +37,7 @@ def simmons_log_specific_conductance(thickness, barrier_height_ev: float):
 
 
 def simmons_specific_resistance(thickness, barrier_height_ev: float):
-    """rho_t (ohm m^2) of Simmons' eq. 25 (physics.md section 13); +inf beyond float range."""
+    """rho_t (ohm m^2) of Simmons' eq. 25 (docs/physics.md section 13); +inf beyond float range."""
     with np.errstate(over="ignore"):
         return np.exp(-simmons_log_specific_conductance(thickness, barrier_height_ev))
 

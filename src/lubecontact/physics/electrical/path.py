@@ -1,4 +1,4 @@
-"""The whole electrical path of one operating point (DESIGN.md Part II "Electrical path").
+"""The whole electrical path of one operating point (docs/DESIGN.md "Electrical path").
 
 Per nominal area the interface conducts through the metal spots, g_s (Eq. 15), and, with
 ``film_conduction`` / ``tunnelling`` on, through the film, g_f (:mod:`.film`); the two are
@@ -26,7 +26,7 @@ the A_r/A_n clamp of Psi (spots.MAX_AREA_FRACTION) no longer enters the answer.
 As A_r/A_n -> 1 the result tends to the constriction of the whole patch, not to zero.
 
 ``open_circuit`` is decided by the user's circuit, not by the model: the contact counts as
-open when contact_resistance > ``interface.open_resistance`` (physics.md section 13).
+open when contact_resistance > ``interface.open_resistance`` (docs/physics.md section 13).
 """
 
 from __future__ import annotations
@@ -77,7 +77,6 @@ def _parallel(a: float, b: float) -> float:
 def film_thickness(scene, contact, film) -> np.ndarray:
     """Thickness (m) of the conducting film: h_T of max(h, 0) between rough surfaces (see
     :mod:`.film`), h itself between smooth ones (positive wherever a smooth film carries load)."""
-
     if contact is None:
         return np.maximum(film, np.finfo(float).tiny)
     return expected_gap(np.maximum(film, 0.0), contact.sigma)

@@ -1,6 +1,6 @@
 """The paper's spot resistance: Holm spots, Cooper's alleviation, nodes in parallel (Eqs. 15-17).
 
-This is the whole electrical model of the paper (physics.md section 8) and the first term
+This is the whole electrical model of the paper (docs/physics.md section 8) and the first term
 of the full path (:mod:`lubecontact.physics.electrical.path`).
 
 - Holm: one circular spot of radius a between half-spaces of resistivities rho1, rho2 has
@@ -10,7 +10,7 @@ of the full path (:mod:`lubecontact.physics.electrical.path`).
   Psi = (1 - sqrt(A_r/A_n))^1.5 multiplies the resistance (Eq. 17), i.e. divides g.
   A_r/A_n of the statistical model can pass 1 at deep interference; it is clamped at
   MAX_AREA_FRACTION = 0.99 for Psi (Psi >= 3.5e-4) and the clamped nodes are reported.
-- Nodes conduct in parallel, each with the Psi of its own A_r/A_n (DESIGN.md):
+- Nodes conduct in parallel, each with the Psi of its own A_r/A_n (docs/DESIGN.md):
   R = 1 / sum_i (g_i dA_i / Psi_i). The sum is taken in logarithms (log-sum-exp) so that R
   stays finite and monotone for as long as it is representable, even where every g_i
   underflows, and is +inf (open circuit) only beyond.
