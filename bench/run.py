@@ -5,6 +5,7 @@
     .venv/bin/python bench/run.py --meshes 51 101  # chosen meshes (n x n nodes)
     .venv/bin/python bench/run.py --figures paper  # also time regenerating Figs. 3-11 (Snakemake)
     .venv/bin/python bench/run.py --json-only      # print the JSON instead of the markdown
+    .venv/bin/python bench/run.py --quick --write bench/CURRENT.md   # the current numbers, kept in git
 
 Writes bench/out/<timestamp>.json and .md (git-ignored) and prints the comparison with the
 previous run in bench/out. Progress goes to stderr, the report to stdout. Not a test:
@@ -694,6 +695,8 @@ def main(argv=None) -> int:
                         help="also time regenerating figures in a scratch copy: every target (full), every target of "
                         "config/test.yaml (test), or only the paper's Figs. 3-11 (paper)")
     parser.add_argument("--json-only", action="store_true", help="print the JSON result (not the markdown), write no .md")
+    parser.add_argument("--write", metavar="PATH", help="also write the markdown report to PATH "
+                        "(bench/CURRENT.md: the current numbers the README's bench section points to)")
     parser.add_argument("--child-mesh", type=int, help=argparse.SUPPRESS)
     parser.add_argument("--child-sweep", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--child-startup", action="store_true", help=argparse.SUPPRESS)
@@ -748,6 +751,9 @@ def main(argv=None) -> int:
         return 0
     report = markdown(result, previous)
     (OUT / f"{stamp}.md").write_text(report)
+    if args.write:
+        Path(args.write).write_text(f"<!-- written by: .venv/bin/python bench/run.py {' '.join(argv or sys.argv[1:])} -->\n\n"
+                                    + report)
     print(report)
     if previous:
         print(f"(compared with {earlier[-1].name}: 'previous wall' in the table)")

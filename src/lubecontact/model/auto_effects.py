@@ -407,7 +407,6 @@ def auto_effects(scene, tolerance: float = DEFAULT_TOLERANCE) -> AutoEffects:
             on["flow_factors"] = False
             why["flow_factors"] = "off: moot, smooth surfaces (asperity_contact off) have phi = 1"
         else:
-
             t_low = (lowest - contact.y_s) / contact.height_std
             deficit = 1.0 - float(pressure_flow_factor(max(lam_low, 0.0)))
             d_resistance = deficit * max(1.0, t_low * lam_low)

@@ -40,7 +40,6 @@ def content_law(model: Model):
     scene = model.scene
     sigma = model.contact.sigma if model.contact is not None else None
     if sigma is not None and scene.effects.flow_factors and scene.roughness.split != 0.5:
-
         return partial(couette_gap, sigma=sigma, split=scene.roughness.split)
     return lambda h: expected_gap_and_slope(h, sigma)
 

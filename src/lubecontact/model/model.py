@@ -9,41 +9,55 @@ balance so that a failure is reported with what was computed.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
 from lubecontact.model.contact_tables import contact_table
+from lubecontact.numerics.cavitation_jfo import JFOSolution
 from lubecontact.numerics.mesh import Mesh, build_mesh
+from lubecontact.numerics.reynolds import ReynoldsSolution
 from lubecontact.numerics.transfer import coarser_mesh
 from lubecontact.physics.deformation import ElasticDeformation
 from lubecontact.physics.materials import effective_modulus
+from lubecontact.physics.percolation import FaceFilm
+from lubecontact.physics.rough_surface import RoughContact
+from lubecontact.scene import Scene
 
 
 class SolveError(RuntimeError):
     """The force balance failed; ``state`` is the last state evaluated (or None). A solve
     reports it as ``converged = 0`` with the message in the case notes, never swallowed."""
 
-    def __init__(self, message: str, state=None):
+    def __init__(self, message: str, state: State | None = None):
         super().__init__(message)
         self.state = state
+
+
+class SqueezeTerm(Protocol):
+    """A transient step's time derivative of the film content h_T (unsteady/integrator.py)."""
+
+    coefficient: float  # d rate / d h_T, 1/s
+    film_scale: float  # m, a length on which the force changes
+
+    def rate(self, expected_gap: np.ndarray) -> np.ndarray:
+        """dh_T/dt (m/s) at each node for the film content ``expected_gap`` (m)."""
 
 
 @dataclass
 class Model:
     """The sub-models a scene calls for, built once (disabled effects are None / False)."""
 
-    scene: object
+    scene: Scene
     mesh: Mesh
     undeformed_gap: np.ndarray  # h_o of Eq. (4), (ny, nx)
-    contact: object | None  # RoughContact when effects.asperity_contact
-    deformation: object | None  # ElasticDeformation when effects.elastic_deformation
+    contact: RoughContact | None  # when effects.asperity_contact
+    deformation: ElasticDeformation | None  # when effects.elastic_deformation
     hydrodynamic: bool  # Reynolds solved (effect on and speed > 0)
-    # A transient step's time derivative of h_T (unsteady.integrator.Squeeze: rate(h_T) m/s,
-    # coefficient = d rate/d h_T 1/s, film_scale m), None for a steady solve
-    squeeze: object | None = None
+    squeeze: SqueezeTerm | None = None  # a transient step's squeeze term, None for a steady solve
 
     @classmethod
-    def assemble(cls, scene, mesh: Mesh | None = None, contact=None) -> "Model":
+    def assemble(cls, scene: Scene, mesh: Mesh | None = None, contact: RoughContact | None = None) -> Model:
         """The model of ``scene`` on its mesh (or on ``mesh``, same domain), reusing the
         rough-contact tables ``contact`` of the same scene when given."""
         effects = scene.effects
@@ -54,16 +68,14 @@ class Model:
         if not effects.asperity_contact:
             contact = None
         elif contact is None:
-
             contact = contact_table(scene)  # built once per roughness/materials, not per solve
         deformation = None
         if effects.elastic_deformation:
-
             deformation = ElasticDeformation(mesh, effective_modulus(scene))
         hydrodynamic = bool(effects.hydrodynamics) and scene.operating.speed > 0.0
         return cls(scene, mesh, undeformed, contact, deformation, hydrodynamic)
 
-    def coarsened(self, coarsest: int) -> "Model | None":
+    def coarsened(self, coarsest: int) -> Model | None:
         """The same model on the mesh with every other node (same domain) in each direction
         longer than ``coarsest`` nodes; None when there is none, or for a transient step
         (its squeeze history lives on this mesh; it starts from the previous step)."""
@@ -74,7 +86,7 @@ class Model:
         return None if coarse is None else Model.assemble(self.scene, coarse, self.contact)
 
     @property
-    def effects_run(self) -> dict:
+    def effects_run(self) -> dict[str, bool]:
         e = self.scene.effects
         return {
             "hydrodynamics": self.hydrodynamic,
@@ -100,16 +112,16 @@ class State:
     contact_pressure: np.ndarray
     fluid_pressure: np.ndarray
     expected_gap: np.ndarray | None  # h_T used by the fluid
-    reynolds: object | None  # ReynoldsSolution
+    reynolds: ReynoldsSolution | JFOSolution | None  # the fluid's solution (None without a fluid)
     contact_force: float
     fluid_force: float
     contact_slope: np.ndarray | None = None  # dp_c/dh (Pa/m) of the contact law, <= 0
     flow_coefficient: np.ndarray | None = None  # k used by the fluid, m^3/(Pa s)
     load_gradient: np.ndarray | None = None  # dF/dh_j (N/m), set by balance_force
-    # the film on the faces (rough surfaces, percolation.FaceFilm) and its slopes d/dh_f, as
-    # the fluid used them (fluid_faces), else None
-    faces: object | None = None
-    face_slopes: object | None = None
+    # the film on the faces (rough surfaces) and its slopes d/dh_f, as the fluid used them
+    # (model/fluid_film.fluid_faces), else None
+    faces: FaceFilm | None = None
+    face_slopes: FaceFilm | None = None
 
     @property
     def total_force(self) -> float:

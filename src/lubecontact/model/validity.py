@@ -94,7 +94,6 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
                 flags["flow_factor_range"] = (f"h/sigma down to {lowest:.3g} < {MIN_FLOW_FACTOR_FILM:g} where the "
                                               f"fluid is pressurised: Patir-Cheng flow factors are extrapolated")
     if hydrodynamic:
-
         gap = state.expected_gap if state.expected_gap is not None else state.film
         thinnest = float(np.min(gap))
         inlet = abs(float(mesh.x[0])) / math.sqrt(2.0 * scene.geometry.radius * thinnest)

@@ -25,7 +25,6 @@ _FAR = 2000.0  # X of the inlet standing for a fully flooded one (1 - f ~ 6e-7)
 
 @lru_cache(maxsize=4096)
 def _load(inlet: float) -> float:
-
     near = np.linspace(-min(inlet, 4.0), 4.0, 4001)
     far = -np.geomspace(inlet, 4.0, 2001)[:-1] if inlet > 4.0 else np.empty(0)
     x = np.concatenate([far, near])

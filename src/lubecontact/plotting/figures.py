@@ -257,7 +257,6 @@ def _unit_size(plot: Mapping, dim: str, coord: xr.DataArray) -> float:
 
 
 def _colours(n: int) -> list:
-
     cmap = colormaps["viridis"]
     return [cmap(0.85 * k / max(n - 1, 1)) for k in range(n)]
 

@@ -418,7 +418,6 @@ class _SpeedTable:
         if value is None:
             return None
         if isinstance(value, str):
-
             try:
                 value = np.loadtxt(value, ndmin=2).tolist()
             except (OSError, ValueError) as err:

@@ -253,7 +253,6 @@ def _sweep_dims(sweep: Mapping, where: str) -> list[tuple[str, tuple[str, ...], 
 
 
 def _scene(base, overrides: Mapping, where: str):
-
     try:
         return load_scene(base, overrides)
     except SceneError as err:

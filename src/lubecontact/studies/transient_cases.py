@@ -33,7 +33,6 @@ def study_spec(path, overrides: Mapping | None = None) -> dict:
 
 
 def _scene(spec: Mapping, overrides: Mapping):
-
     return load_scene(spec["base"], {**spec.get("set", {}), **overrides})
 
 

@@ -8,9 +8,9 @@ import sys
 import numpy as np
 import xarray as xr
 
-from lubecontact.model.prepare import prepare
 from lubecontact.model.coupling import coupled_solve
 from lubecontact.model.model import Model
+from lubecontact.model.prepare import prepare
 from lubecontact.numerics.blas_threads import one_blas_thread
 from lubecontact.scene import SceneError
 from lubecontact.unsteady.integrator import TimeIntegrator, scene_at

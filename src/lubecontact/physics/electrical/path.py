@@ -101,7 +101,6 @@ def electrical_path(scene, mesh, contact, film) -> ElectricalPath:
 
     log_film = np.full(mesh.shape, -np.inf)
     if effects.film_conduction or effects.tunnelling:
-
         log_film = film_log_conductance(
             film_thickness(scene, contact, film),
             1.0 - np.minimum(area_fraction, 1.0),
@@ -112,7 +111,6 @@ def electrical_path(scene, mesh, contact, film) -> ElectricalPath:
 
     macro = 0.0
     if effects.macro_constriction:
-
         rho = 0.5 * (scene.cylinder.resistivity + scene.block.resistivity)
         macro = macro_constriction_resistance(ClusterOperator(mesh), np.logaddexp(log_g, log_film), rho)
     total = _parallel(spot, film_resistance) + macro  # macro is +inf only where nothing conducts
