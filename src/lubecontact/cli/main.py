@@ -161,7 +161,7 @@ def main(argv=None) -> int:
 
 def _run(args) -> int:
     if args.command == "roughness":
-        from lubecontact.surfaces.report import run
+        from lubecontact.cli.roughness import run
 
         return run(args)
     from lubecontact.scene.scene import SceneError

@@ -1,4 +1,4 @@
-"""What ``lubecontact roughness`` prints and writes: McCool's parameters with their units,
+"""``lubecontact roughness``: McCool's parameters of measured surfaces printed with their units,
 the sampling and cut-off they were taken at, and a ``roughness:`` scene section."""
 
 from __future__ import annotations
