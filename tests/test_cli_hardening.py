@@ -206,3 +206,59 @@ def test_interrupt_and_a_failed_write_are_one_line_each(tmp_path, capsys, monkey
     code, _, err = run(capsys, "solve", SCENE, *TINY, "--out", str(tmp_path / "x.nc"))
     assert code == cli.EXIT_NOT_CONVERGED and err.count("\n") == 1 and "No space left on device" in err
     assert not (tmp_path / "x.nc").exists()
+
+
+# --- issue 29: one --out check for every command ------------------------------------------------
+
+
+@pytest.fixture
+def no_surface_read(monkeypatch):
+    """Fail the test if a surface is read (the --out refusal must come first)."""
+    import lubecontact.cli.roughness
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError("surface read before refusing --out")
+
+    monkeypatch.setattr(lubecontact.cli.roughness, "read_surface", forbidden)
+
+
+def test_roughness_out_refuses_devices_directories_and_its_surfaces_before_reading(tmp_path, capsys, no_surface_read):
+    surface = ROOT / "config" / "surfaces" / "ground.asc"
+    device = tmp_path / "dev.yaml"
+    kind = fake_device(device)
+    refused(capsys, "roughness", str(surface), "--out", str(device), needle=f"is {kind}")
+    assert not stat.S_ISREG(device.stat().st_mode)  # the node is still a node
+    refused(capsys, "roughness", str(surface), "--out", str(tmp_path), needle="is a directory")
+    copy = tmp_path / "g.asc"
+    copy.write_bytes(surface.read_bytes())
+    before = copy.read_bytes()
+    refused(capsys, "roughness", str(copy), "--out", str(copy), needle="is also an input")
+    other = ROOT / "config" / "surfaces" / "honed.asc"
+    refused(capsys, "roughness", str(copy), str(other), "--out", str(copy), needle="is also an input")
+    assert copy.read_bytes() == before
+
+
+def test_roughness_out_follows_a_link(tmp_path, capsys):
+    surface = ROOT / "config" / "surfaces" / "ground.asc"
+    target = tmp_path / "target.yaml"
+    target.write_text("old\n")
+    link = tmp_path / "link.yaml"
+    link.symlink_to(target)
+    code, _, err = run(capsys, "roughness", str(surface), "--out", str(link))
+    assert code == 0, err
+    assert link.is_symlink() and "roughness:" in target.read_text()
+
+
+def test_transient_refuses_a_mesh_beyond_memory_with_an_override(tmp_path, capsys, monkeypatch):
+    import lubecontact.cli.transient
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError("ran before refusing")
+
+    monkeypatch.setattr(lubecontact.cli.transient, "transient", forbidden)
+    monkeypatch.setenv("LUBECONTACT_MEMORY_MB", "300")
+    stop = ["--set", "motion.kind=stop", "--set", "mesh.nx=201", "--set", "mesh.ny=201"]
+    err = refused(capsys, "transient", SCENE, *stop, "--out", str(tmp_path / "t.nc"), needle="refusing to solve")
+    assert "--force-size" in err
+    code, _, err = run(capsys, "transient", SCENE, *stop, "--force-size", "--out", str(tmp_path / "t.nc"))
+    assert "ran before refusing" in err  # the override goes on to run it (stopped here by the patch)

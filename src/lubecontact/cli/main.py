@@ -42,6 +42,7 @@ def _parser() -> argparse.ArgumentParser:
     transient = sub.add_parser("transient", help="follow the scene's motion: (stop, start, oscillation, table) in time")
     scene_args(transient)
     transient.add_argument("--out", required=True, help="output netCDF file (time series)")
+    transient.add_argument("--force-size", action="store_true", help="run even if the memory estimate exceeds this machine's")
 
     show = sub.add_parser("show", help="validate a scene and print its canonical form and hash")
     scene_args(show)

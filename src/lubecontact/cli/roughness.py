@@ -8,6 +8,7 @@ import sys
 import yaml
 
 from lubecontact.io.atomic_write import write_text
+from lubecontact.io.output_path import OutputPathError, check_output_path
 from lubecontact.surfaces.mccool import McCool, composite, parameters
 from lubecontact.surfaces.moments import DEFAULT_CUTOFF_INTERVALS, spectral_moments
 from lubecontact.surfaces.reading import SurfaceError, read_surface
@@ -54,7 +55,14 @@ def section_yaml(p: McCool, sources: list[str], split: tuple[float, float] | Non
 
 
 def run(args) -> int:
-    """``lubecontact roughness``: 0 done, 2 bad input (the reason on stderr, nothing written)."""
+    """``lubecontact roughness``: 0 done, 2 bad input (the reason on stderr, nothing written).
+    ``--out`` is checked as every command's is, before any surface is read (io/output_path.py):
+    never a device, a directory or one of the surfaces; a link is followed."""
+    try:
+        out = None if args.out is None else check_output_path(args.out, inputs=args.surfaces)
+    except OutputPathError as err:
+        print(f"lubecontact: bad input: {err}", file=sys.stderr)
+        return 2
     try:
         if len(args.surfaces) > 2:
             raise SurfaceError(f"{len(args.surfaces)} surfaces given; allowed: one, or two for their composite")
@@ -73,9 +81,9 @@ def run(args) -> int:
         print(f"lubecontact: bad input: {err}", file=sys.stderr)
         return 2
     print("\n".join(line for block in blocks for line in block))
-    if args.out:
+    if out is not None:
         try:
-            write_text(args.out, section_yaml(result, list(args.surfaces), split))
+            write_text(out, section_yaml(result, list(args.surfaces), split))
         except OSError as err:
             print(f"lubecontact: cannot write {args.out}: {err.strerror or err}", file=sys.stderr)
             return 2
