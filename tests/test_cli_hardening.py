@@ -4,7 +4,11 @@ hex/octal numbers and empty scenes are refused; an internal error names where it
 is. Devices are made with mknod in a temporary directory (a FIFO when not root)."""
 
 import os
+import shlex
+import shutil
 import stat
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -262,3 +266,24 @@ def test_transient_refuses_a_mesh_beyond_memory_with_an_override(tmp_path, capsy
     assert "--force-size" in err
     code, _, err = run(capsys, "transient", SCENE, *stop, "--force-size", "--out", str(tmp_path / "t.nc"))
     assert "ran before refusing" in err  # the override goes on to run it (stopped here by the patch)
+
+
+@pytest.mark.skipif(os.geteuid() != 0 or shutil.which("unshare") is None,
+                    reason="a real full disk needs root and unshare (a small tmpfs in a private mount namespace)")
+@pytest.mark.parametrize("command", [
+    ["solve"], ["sweep", "--speeds", "0.1,1"],
+    ["transient", "--set", "motion.kind=stop", "--set", "motion.duration=0.01"],
+], ids=lambda c: c[0])
+def test_a_real_full_disk_exits_3_and_leaves_no_file(tmp_path, command):
+    """A 48 kB tmpfs with 40 kB taken: the netCDF library fails with "HDF error", which the
+    command reports as a full disk (exit 3), and no partial file is left behind."""
+    full = tmp_path / "full"
+    full.mkdir()
+    argv = " ".join(shlex.quote(a) for a in [sys.executable, "-m", "lubecontact.cli.main", command[0], SCENE, *TINY,
+                                              *command[1:], "--out", str(full / "x.nc")])
+    script = (f"mount -t tmpfs -o size=48k tmpfs {full} && head -c 40960 /dev/zero > {full}/fill && "
+              f"{{ {argv}; code=$?; }}; ls -A {full}; exit $code")
+    done = subprocess.run(["unshare", "-m", "sh", "-c", script], capture_output=True, text=True, timeout=300)
+    assert done.returncode == cli.EXIT_NOT_CONVERGED, done.stderr
+    assert "No space left on device" in done.stderr and "internal error" not in done.stderr
+    assert done.stdout.split()[-1] == "fill"  # what the tmpfs holds: no x.nc, no temporary file

@@ -30,7 +30,12 @@ def run_transient(scene, out) -> int:
     except SceneError as err:
         print(f"lubecontact: bad input:\n{err}", file=sys.stderr)
         return EXIT_BAD_INPUT
-    write_case(ds, out)
+    try:
+        write_case(ds, out)
+    except OSError as err:
+        print(summary(ds))
+        print(f"lubecontact: could not write {out}: {err.strerror or err}; the result is lost", file=sys.stderr)
+        return EXIT_NOT_CONVERGED
     print(summary(ds))
     print(f"wrote {out}")
     if ds["converged"].item() != 1:
