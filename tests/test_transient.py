@@ -227,3 +227,20 @@ def test_start_settles_at_the_steady_sliding_state_and_a_table_matches_it():
     assert start["contact_resistance"].values[-1] == pytest.approx(sliding["contact_resistance"].item(), rel=1e-3)
     assert math.isnan(start["reconnect_time"].item())
     np.testing.assert_allclose(table["contact_resistance"].values, start["contact_resistance"].values, rtol=1e-9)
+
+
+def test_a_relative_table_file_is_read_beside_the_scene(tmp_path, monkeypatch):
+    """motion.table as a file name is taken from the scene file's directory, as a relative
+    roughness.surface is, whatever the working directory (issue 29 item 7)."""
+    scenes = tmp_path / "scenes"
+    scenes.mkdir()
+    (scenes / "speeds.txt").write_text("0 1.0\n1 3.0\n2 0.0\n")
+    (scenes / "s.yaml").write_text("motion: {kind: table, table: speeds.txt}\n")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    scene = lc.load_scene(str(scenes / "s.yaml"))
+    assert scene.motion.table == ((0.0, 1.0), (1.0, 3.0), (2.0, 0.0))
+    (elsewhere / "speeds.txt").write_text("0 5.0\n1 0.0\n")  # a file of that name here is not read
+    assert lc.load_scene(str(scenes / "s.yaml")).motion.table == scene.motion.table
+    assert lc.load_scene(str(scenes / "s.yaml"), {"motion.table": "speeds.txt"}).hash == scene.hash

@@ -649,13 +649,22 @@ def _build_section(name: str, raw, problems: list[str]):
 
 
 def _directory(source) -> str:
-    """Where a relative ``roughness.surface`` starts: the scene file's directory, a Scene's
-    own, else the current directory."""
+    """Where a relative ``roughness.surface`` or ``motion.table`` starts: the scene file's
+    directory, a Scene's own, else the current directory."""
     if isinstance(source, Scene):
         return source.roughness.directory
     if isinstance(source, (str, os.PathLike)):
         return str(Path(source).resolve().parent)
     return str(Path.cwd())
+
+
+def _table_beside_scene(raw: Mapping, directory: str) -> Mapping:
+    """``raw`` with a relative ``motion.table`` file taken from ``directory`` (the scene
+    file's, as a relative ``roughness.surface`` is), not from the current directory."""
+    motion = raw.get("motion")
+    if not isinstance(motion, Mapping) or not isinstance(motion.get("table"), str) or Path(motion["table"]).is_absolute():
+        return raw
+    return {**raw, "motion": {**motion, "table": str(Path(directory) / motion["table"])}}
 
 
 def _surface_replaces(raw, overrides: Mapping):
@@ -744,8 +753,10 @@ def load_scene(path_or_mapping, overrides: Mapping | None = None) -> Scene:
     if not isinstance(raw, Mapping):
         raise SceneError(origin, problems + [f"{raw!r}: a scene is a mapping of sections {', '.join(SECTIONS)}"])
     problems.extend(_unknown_key(str(k)) for k in raw if k not in SECTIONS)
+    directory = _directory(path_or_mapping)
+    raw = _table_beside_scene(raw, directory)
     sections = {name: _build_section(name, raw.get(name), problems) for name in SECTIONS}
-    sections["roughness"] = _measured(sections["roughness"], raw.get("roughness"), _directory(path_or_mapping), problems)
+    sections["roughness"] = _measured(sections["roughness"], raw.get("roughness"), directory, problems)
     problems.extend(_cross_problems(sections))
     if problems:
         raise SceneError(origin, problems)
