@@ -211,11 +211,13 @@ def test_nan_in_raw_matrix_refused(tmp_path):
         ("junk", ["junk.xyz"], "cannot read"),
         ("one_point", ["one.npy", "--size", "1", "--unit", "um"], "at least"),
         ("flat", ["flat.npy", "--size", "16", "16", "--unit", "um"], "sigma = 0"),
+        ("constant", ["constant.npy", "--size", "16", "16", "--unit", "um"], "sigma = 0"),
         ("flat", ["flat.npy"], "needs its size"),
         ("raw_text", ["raw.txt"], "no physical size"),
         ("flat", ["flat.npy", "--size", "16", "--unit", "um"], "two lengths"),
     ],
-    ids=["unreadable", "unknown_format", "one_point", "all_equal", "npy_without_size", "text_without_size", "size_count"],
+    ids=["unreadable", "unknown_format", "one_point", "all_equal", "constant", "npy_without_size", "text_without_size",
+         "size_count"],
 )
 def test_cli_bad_input_exit_2_nothing_written(tmp_path, monkeypatch, capsys, setup, args, reason):
     monkeypatch.chdir(tmp_path)
@@ -225,6 +227,8 @@ def test_cli_bad_input_exit_2_nothing_written(tmp_path, monkeypatch, capsys, set
         np.save(tmp_path / "one.npy", np.array([1.0]))
     elif setup == "flat":
         np.save(tmp_path / "flat.npy", np.full((16, 16), 2.0) + np.arange(16))  # a tilted plane
+    elif setup == "constant":  # every height equal (issue 29 item 6: it passed as sigma = 2e-21 m)
+        np.save(tmp_path / "constant.npy", np.full((16, 16), 2.0))
     elif setup == "raw_text":
         np.savetxt(tmp_path / "raw.txt", np.random.default_rng(0).random((16, 16)))
     assert main(["roughness", *args, "--out", "r.yaml"]) == 2
@@ -411,3 +415,11 @@ def test_fig04_alpha_holds_mccool_bandwidth_and_fig04_does_not():
     assert alphas("fig04_alpha") == pytest.approx([6.03] * 4, rel=1e-3)
     paper = alphas("fig04")
     assert paper[0] == pytest.approx(1.51, rel=1e-2) and paper[-1] == pytest.approx(96.5, rel=1e-2)
+
+
+def test_a_constant_surface_is_refused_in_a_scene(scene_dir):
+    """Every height equal: no roughness, refused with the reason (it was taken for sigma =
+    2e-21 m, R_peak 5e10 m, and solved as converged with R = inf; issue 29 item 6)."""
+    write_asc(scene_dir / "maps" / "flat.asc", np.full((32, 32), 1.3e-6))
+    with pytest.raises(SceneError, match="sigma = 0"):
+        load_scene(str(scene_dir / "scenes" / "s.yaml"), {"roughness.surface": "../maps/flat.asc"})

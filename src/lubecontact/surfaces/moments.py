@@ -36,7 +36,7 @@ from lubecontact.surfaces.reading import Surface, SurfaceError
 
 DEFAULT_CUTOFF_INTERVALS = 4.0  # lambda_c = 4 sampling intervals unless given
 WINDOWS = ("tukey", "hann", "none")
-ROUNDOFF = 1e-9  # an RMS below this fraction of the heights' range is a plane's round-off
+ROUNDOFF = 1e-9  # an RMS below this fraction of the heights' size is a plane's round-off
 TUKEY_TAPER = 0.5  # fraction of a profile inside the Tukey window's cosine tapers
 
 
@@ -137,7 +137,10 @@ def spectral_moments(surface: Surface, cutoff: float | None = None, window: str 
         )
     z = detrended(surface)
     m0 = float(np.mean(z**2))
-    if not m0 > (ROUNDOFF * np.ptp(surface.heights)) ** 2:
+    # the heights' size, not only their range: a constant map has no range, and its plane's
+    # round-off (1e-21 m on heights of 1 um) would pass for roughness
+    size = max(float(np.ptp(surface.heights)), float(np.max(np.abs(surface.heights))))
+    if not m0 > (ROUNDOFF * size) ** 2:
         raise SurfaceError(f"{surface.source}: all heights lie on a plane (sigma = 0): no roughness to describe")
     q_cut = 2.0 * np.pi / cutoff
     m2, m4 = [], []
