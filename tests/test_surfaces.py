@@ -421,5 +421,7 @@ def test_a_constant_surface_is_refused_in_a_scene(scene_dir):
     """Every height equal: no roughness, refused with the reason (it was taken for sigma =
     2e-21 m, R_peak 5e10 m, and solved as converged with R = inf; issue 29 item 6)."""
     write_asc(scene_dir / "maps" / "flat.asc", np.full((32, 32), 1.3e-6))
+    from lubecontact.scene import SceneError, load_scene
+
     with pytest.raises(SceneError, match="sigma = 0"):
         load_scene(str(scene_dir / "scenes" / "s.yaml"), {"roughness.surface": "../maps/flat.asc"})
