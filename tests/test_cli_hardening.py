@@ -9,6 +9,7 @@ import shutil
 import stat
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -287,3 +288,50 @@ def test_a_real_full_disk_exits_3_and_leaves_no_file(tmp_path, command):
     assert done.returncode == cli.EXIT_NOT_CONVERGED, done.stderr
     assert "No space left on device" in done.stderr and "internal error" not in done.stderr
     assert done.stdout.split()[-1] == "fill"  # what the tmpfs holds: no x.nc, no temporary file
+
+
+# --- issue 29 item 5: unbounded input is refused at once, with a message of bounded length ------
+
+
+def refused_fast(capsys, *argv, needle, seconds=5.0):
+    start = time.perf_counter()
+    err = refused(capsys, *argv, needle=needle)
+    assert time.perf_counter() - start < seconds
+    assert len(err) < 3000  # the message quotes a bounded part of what it refuses
+    return err
+
+
+def test_a_billion_speeds_are_refused_before_any_is_built(tmp_path, capsys, no_solve):
+    refused_fast(capsys, "sweep", SCENE, "--speeds", "1e-4:10:1e9", "--out", str(tmp_path / "s.nc"), needle="N <= 10000")
+    many = ",".join(["0.1"] * 20_000)
+    refused_fast(capsys, "sweep", SCENE, "--speeds", many, "--out", str(tmp_path / "s.nc"), needle="more than 10000 speeds")
+
+
+def test_a_huge_scene_file_is_refused_by_its_size(tmp_path, capsys):
+    big = tmp_path / "big.yaml"
+    big.write_text("motion:\n  kind: table\n  table: [" + ", ".join(["[0, 1]"] * 400_000) + "]\n")  # 3 MB
+    refused_fast(capsys, "show", str(big), needle="at most 1 MB")
+
+
+def test_yaml_aliases_that_expand_without_bound_are_refused(tmp_path, capsys):
+    laughs = ['a: &a ["lol", "lol", "lol", "lol", "lol", "lol", "lol", "lol", "lol"]']
+    laughs += [f"{chr(98 + i)}: &{chr(98 + i)} [{', '.join(['*' + chr(97 + i)] * 9)}]" for i in range(8)]
+    bomb = tmp_path / "laughs.yaml"
+    bomb.write_text("\n".join(laughs) + "\n")  # 9^9 strings once expanded
+    refused_fast(capsys, "show", str(bomb), needle="more than 100000 values")
+
+
+def test_deeply_nested_yaml_is_bad_input_not_an_internal_error(tmp_path, capsys):
+    deep = tmp_path / "deep.yaml"
+    deep.write_text("lubricant: {viscosity: " + "[" * 50_000 + "]" * 50_000 + "}\n")
+    refused_fast(capsys, "show", str(deep), needle="deeper than 1000 levels")
+    shallow = tmp_path / "shallow.yaml"  # parsed, then refused by the structure bound
+    shallow.write_text("lubricant: {viscosity: " + "[" * 100 + "]" * 100 + "}\n")
+    refused_fast(capsys, "show", str(shallow), needle="nests deeper than 16 levels")
+
+
+def test_a_huge_bad_value_is_not_echoed_whole(tmp_path, capsys):
+    scene = tmp_path / "s.yaml"
+    scene.write_text("lubricant: {viscosity: '" + "x" * 900_000 + "'}\n")
+    err = refused_fast(capsys, "show", str(scene), needle="lubricant.viscosity")
+    assert "characters left out" in err

@@ -14,6 +14,7 @@ from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTER
 # The commands' modules are imported where a command runs, not here: `lubecontact --help`
 # and `show` then start without scipy and xarray (0.4-0.6 s), and `solve` without xarray
 # (tests/test_startup.py).
+MAX_SPEEDS = 10_000  # points of one sweep; each is a solve of its own
 REPORT_TO = "the lubecontact maintainers (README.md, 'Reporting a bug')"
 
 
@@ -66,19 +67,24 @@ def parse_speeds(text: str) -> list[float]:
 
     import numpy as np
 
-    allowed = "allowed: a comma list of finite speeds >= 0 m/s (0.001,0.01,0.1) or START:STOP:N with 0 < START, STOP finite and N >= 1 (1e-4:10:25)"
+    allowed = (f"allowed: a comma list of finite speeds >= 0 m/s (0.001,0.01,0.1) or START:STOP:N with 0 < START, "
+               f"STOP finite and 1 <= N <= {MAX_SPEEDS} (1e-4:10:25)")
+    shown = text if len(text) <= 80 else f"{text[:40]}...{text[-20:]} ({len(text)} characters)"
     try:
         if ":" in text:
             start, stop, n = (float(v) for v in text.split(":"))
-            if not (math.isfinite(start) and math.isfinite(stop) and start > 0 and stop > 0 and n >= 1 and n.is_integer()):
+            if not (math.isfinite(start) and math.isfinite(stop) and start > 0 and stop > 0 and 1 <= n <= MAX_SPEEDS
+                    and n.is_integer()):
                 raise ValueError("out of range")
             return np.geomspace(start, stop, int(n)).tolist()
+        if text.count(",") >= MAX_SPEEDS:
+            raise ValueError(f"more than {MAX_SPEEDS} speeds")
         speeds = [float(v) for v in text.split(",") if v.strip()]
         if not speeds or not all(math.isfinite(v) and v >= 0 for v in speeds):
             raise ValueError("empty, not finite or negative")
         return speeds
     except ValueError as err:
-        raise ValueError(f"--speeds {text!r}: {err}; {allowed}") from None
+        raise ValueError(f"--speeds {shown!r}: {err}; {allowed}") from None
 
 
 def _load(args):

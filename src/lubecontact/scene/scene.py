@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import difflib
 import hashlib
+import io
 import math
 import numbers
 import os
@@ -43,12 +44,33 @@ MCCOOL_VARIANCE_CONSTANT = 3.717e-4
 SURFACE_SETS = ("sigma", "asperity_density", "asperity_radius")
 
 
+# What a scene may hold. Table 1 is 2 kB and ~60 values; a long speed history goes in a
+# motion.table file. Beyond these a scene is refused before anything walks it: a 100 MB
+# scene once ran for minutes at 7.8 GB, and a few lines of YAML aliases ("billion laughs")
+# expand to more values than memory holds.
+MAX_SCENE_BYTES = 2**20
+MAX_TABLE_BYTES = 16 * 2**20
+MAX_VALUES = 100_000
+MAX_DEPTH = 16
+MAX_FLOW_DEPTH = 1000  # brackets the YAML reader is given at most
+MAX_PROBLEM_CHARS = 500  # a message quotes at most this much of a value
+
+
+def _shortened(text: str, limit: int = MAX_PROBLEM_CHARS) -> str:
+    """``text`` with its middle left out beyond ``limit`` characters (a huge bad value is not
+    echoed whole)."""
+    if len(text) <= limit:
+        return text
+    keep = limit // 2
+    return f"{text[:keep]} ... [{len(text) - 2 * keep} characters left out] ... {text[-keep:]}"
+
+
 class SceneError(ValueError):
     """An unusable scene. ``problems`` holds one message per problem (also the lines of str())."""
 
     def __init__(self, origin: str, problems: list[str]):
         self.origin = origin
-        self.problems = list(problems)
+        self.problems = [_shortened(str(p)) for p in problems]
         super().__init__(f"invalid scene ({origin}):\n" + "\n".join(f"  {p}" for p in self.problems))
 
     def __reduce__(self):  # picklable across worker processes
@@ -419,6 +441,9 @@ class _SpeedTable:
             return None
         if isinstance(value, str):
             try:
+                size = os.path.getsize(value)
+                if size > MAX_TABLE_BYTES:
+                    raise _Invalid(f"the table file is {size / 2**20:.3g} MB; at most {MAX_TABLE_BYTES / 2**20:g} MB")
                 value = np.loadtxt(value, ndmin=2).tolist()
             except (OSError, ValueError) as err:
                 raise _Invalid(f"cannot read the table file ({err})") from None
@@ -563,16 +588,67 @@ def _read(source) -> tuple[object, str]:
     if isinstance(source, (str, os.PathLike)):
         path = Path(source)
         try:
-            with path.open() as stream:  # a stream: YAML error marks name the file
-                raw = yaml.load(stream, Loader=_UniqueKeyLoader)
+            size = path.stat().st_size
+            if size > MAX_SCENE_BYTES:
+                raise SceneError(str(path), [
+                    f"the scene file is {size / 2**20:.3g} MB; allowed: at most {MAX_SCENE_BYTES / 2**20:g} MB "
+                    "(a long speed history goes in a motion.table file)"
+                ])
+            text = path.read_text()
+            brackets = text.count("[") + text.count("{")  # counted in C: the scan below only when it matters
+            if brackets > MAX_FLOW_DEPTH and _flow_depth(text) > MAX_FLOW_DEPTH:  # libyaml crashes near 50 000
+                raise SceneError(str(path), [f"the YAML nests brackets deeper than {MAX_FLOW_DEPTH} levels; "
+                                             f"allowed: {MAX_DEPTH}"])
+            stream = io.StringIO(text)
+            stream.name = str(path)  # YAML error marks name the file
+            raw = yaml.load(stream, Loader=_UniqueKeyLoader)
         except OSError as err:
             raise SceneError(str(path), [f"cannot read scene file: {err.strerror or err}"]) from err
         except yaml.YAMLError as err:
             raise SceneError(str(path), [f"invalid YAML: {err}"]) from err
+        except RecursionError:
+            raise SceneError(str(path), [f"the YAML nests deeper than Python can read; allowed: {MAX_DEPTH} levels"]) from None
         if raw is None:
             raise SceneError(str(path), [EMPTY_SCENE])
         return raw, str(path)
     raise TypeError(f"load_scene expects a path, a mapping or a Scene, not {type(source).__name__}")
+
+
+def _flow_depth(text: str) -> int:
+    """The deepest nesting of YAML flow brackets ([ and {) outside quotes in ``text``."""
+    depth = deepest = 0
+    quote = None
+    for char in text:
+        if quote:
+            quote = None if char == quote else quote
+        elif char in "'\"":
+            quote = char
+        elif char in "[{":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif char in "]}":
+            depth -= 1
+    return deepest
+
+
+def _bounded(raw, origin: str) -> None:
+    """SceneError unless ``raw`` holds at most MAX_VALUES values nested at most MAX_DEPTH
+    deep, counted as they expand (a YAML alias counts each time it is used), so that nothing
+    later walks or prints an unbounded structure."""
+    count, todo = 0, [(raw, 1)]
+    while todo:
+        value, depth = todo.pop()
+        count += 1
+        if count > MAX_VALUES or depth > MAX_DEPTH:
+            what = f"holds more than {MAX_VALUES} values" if count > MAX_VALUES else f"nests deeper than {MAX_DEPTH} levels"
+            raise SceneError(origin, [
+                f"the scene {what} (YAML aliases count each time they are used); allowed: sections of "
+                "keys with numbers, words or short lists (a long speed history goes in a motion.table file)"
+            ])
+        if isinstance(value, Mapping):
+            todo.extend((v, depth + 1) for v in value.values())
+        elif isinstance(value, (list, tuple)):
+            todo.extend((v, depth + 1) for v in value)
 
 
 def _unknown_key(key: str) -> str:
@@ -748,6 +824,8 @@ def load_scene(path_or_mapping, overrides: Mapping | None = None) -> Scene:
     Raises SceneError listing every problem.
     """
     raw, origin = _read(path_or_mapping)
+    _bounded(raw, origin)
+    _bounded(dict(overrides or {}), "overrides")
     problems: list[str] = []
     raw = _apply_overrides(_surface_replaces(raw, overrides or {}), overrides or {}, problems)
     if not isinstance(raw, Mapping):
