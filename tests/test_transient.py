@@ -189,7 +189,9 @@ def test_cli_transient_writes_the_series_and_exits_3_when_a_step_fails(tmp_path,
               "--set", "motion.duration=0.02", "--set", "operating.speed=1.0", "--set", "motion.tolerance=1e-2"]
     out = tmp_path / "series.nc"
     assert main(common + ["--out", str(out)]) == 0
-    assert "reconnect_time" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "reconnect_time" in printed
+    assert "open_fraction = nan: only an oscillation has one (motion.kind = stop)" in printed  # a NaN says why
     with xr.open_dataset(out) as ds:
         assert ds["time"].attrs["units"] == "s" and ds["reconnect_time"].attrs["units"] == "s"
         assert all("units" in ds[name].attrs and "long_name" in ds[name].attrs for name in ds.data_vars)
@@ -199,6 +201,7 @@ def test_cli_transient_writes_the_series_and_exits_3_when_a_step_fails(tmp_path,
         assert 0.0 < ds["reconnect_time"].item() < 0.02
     failed = tmp_path / "failed.nc"
     assert main(common + ["--set", "solver.max_iterations=1", "--out", str(failed)]) == 3
+    assert "reconnect_time = nan: the run ended before the contact reconnected" in capsys.readouterr().out
     with xr.open_dataset(failed) as ds:
         assert ds["converged"].item() == 0 and "NOT CONVERGED" in ds.attrs["notes"]
     assert main(common + ["--set", "motion.kind=spin", "--out", str(tmp_path / "bad.nc")]) == 2

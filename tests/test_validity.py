@@ -1,6 +1,5 @@
 """Validity flags (docs/DESIGN.md): every ground a case leaves is named in its output."""
 
-
 import pytest
 
 import lubecontact as lc
@@ -63,3 +62,29 @@ def test_flow_factor_range_and_a_clean_case():
     clean = solve(**{"roughness.sigma": 0.3e-6, "operating.speed": 0.5, "operating.force": 1.0,
                      "mesh.x_min": -6e-3, "mesh.nx": 61})
     assert flags(clean) == set() and int(clean.valid) == 1 and clean.attrs["validity"] == "ok"
+
+
+def test_the_cli_says_each_flag_in_words_after_the_results(tmp_path, capsys):
+    """solve and sweep print, after the values, one line per validity flag raised, the open
+    circuits and what a negative film is (issue 29 items 8 and 11)."""
+    line = ["--set", "mesh.nx=21", "--set", "mesh.ny=1"]
+    assert main(["solve", TABLE1, *line, "--set", "operating.speed=0.001", "--out", str(tmp_path / "a.nc")]) == 0
+    out = capsys.readouterr().out
+    results, findings = out.split("converged = yes")
+    assert "valid = NO at 1 of 1 point(s)" in findings
+    raised = flags(_read(tmp_path / "a.nc"))
+    assert raised  # bulk_yield and flow_factor_range at 0.001 m/s on this line contact
+    for flag in raised:
+        assert f"validity {flag}: " in findings
+    assert "min_film_thickness < 0 at 0.001 m/s: the mean planes" in findings
+    assert main(["sweep", TABLE1, *line, "--speeds", "1,10", "--out", str(tmp_path / "b.nc")]) == 0
+    findings = capsys.readouterr().out.split("converged = yes")[1]
+    assert "open circuit at 10 m/s: contact_resistance up to" in findings and "> interface.open_resistance = 10 ohm" in findings
+    assert "validity 1 m/s: gw_area: A_r/A_n up to" in findings
+
+
+def _read(path):
+    import xarray as xr
+
+    with xr.open_dataset(path) as ds:
+        return ds.load()

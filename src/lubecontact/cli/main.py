@@ -94,6 +94,7 @@ def _load(args):
     return load_scene(args.scene, overrides)
 
 
+_JUDGED = ("converged", "valid", "open_circuit")  # read by _converged and _findings, not shown as values
 _SHOWN = ("contact_resistance", "spot_resistance", "macro_constriction_resistance", "film_resistance",
           "friction_coefficient", "contact_force", "fluid_force",
           "min_film_thickness", "iterations", "force_residual", "solve_time")
@@ -113,6 +114,31 @@ def _summary(effects_run: str, values) -> str:
         lines.append(f"{name:>22s} = {shown} {SCALARS[name][0]}")
     lines.append(f"{'converged':>22s} = {'yes' if _converged(values) else 'NO'}")
     return "\n".join(lines)
+
+
+def _findings(values, speeds, validity_notes: str, open_resistance: float) -> list[str]:
+    """What an engineer must know of the numbers above, in words: whether each point stays on
+    its sub-models' ground (one line per flag raised), the open circuits, a negative film."""
+    import numpy as np
+
+    def at(mask) -> str:
+        picked = [f"{u:g}" for u in np.asarray(speeds)[mask]]
+        return f"{', '.join(picked[:8])}{' ...' if len(picked) > 8 else ''} m/s"
+
+    valid = np.asarray(values["valid"]).ravel() == 1
+    lines = [f"{'valid':>22s} = " + ("yes (every sub-model within its range)" if valid.all() else
+                                     f"NO at {int((~valid).sum())} of {valid.size} point(s): left a sub-model's ground")]
+    lines += [f"  validity {line}" for line in validity_notes.splitlines()]
+    resistance = np.asarray(values["contact_resistance"]).ravel()
+    open_ = np.asarray(values["open_circuit"]).ravel() == 1
+    if open_.any():
+        lines.append(f"  open circuit at {at(open_)}: contact_resistance up to {resistance[open_].max():.4g} ohm > "
+                     f"interface.open_resistance = {open_resistance:g} ohm")
+    film = np.asarray(values["min_film_thickness"]).ravel()
+    if (film < 0).any():
+        lines.append(f"  min_film_thickness < 0 at {at(film < 0)}: the mean planes of the rough surfaces "
+                     f"interpenetrate (asperities carry load); it is a separation, not a gap")
+    return lines
 
 
 def _converged(values) -> bool:
@@ -201,6 +227,7 @@ def _run(args) -> int:
         with elapsed_bar(est):
             result, _ = solve_case(scene, fields=args.fields)
         write, effects_run, values = result.write, result.attrs["effects_run"], result.scalars
+        speeds, validity_notes = [scene.operating.speed], result.attrs["validity_notes"]
     elif args.command == "transient":
         from lubecontact.cli.transient import run_transient
 
@@ -211,13 +238,15 @@ def _run(args) -> int:
 
         ds = sweep(scene, speeds)
         write, effects_run = (lambda path: write_case(ds, path)), ds.attrs["effects_run"]
-        values = {name: ds[name].values for name in (*_SHOWN, "converged")}
+        values = {name: ds[name].values for name in (*_SHOWN, *_JUDGED)}
+        speeds, validity_notes = ds["speed"].values, ds.attrs["validity_notes"]
     try:
         write(out)
     except OSError as err:
         print(f"lubecontact: could not write {args.out}: {err.strerror or err}; the result is lost", file=sys.stderr)
         return EXIT_NOT_CONVERGED
     print(_summary(effects_run, values))
+    print("\n".join(_findings(values, speeds, validity_notes, scene.interface.open_resistance)))
     print(f"wrote {args.out}")
     if not _converged(values):
         print("lubecontact: the solve did NOT converge (converged = 0 in the file)", file=sys.stderr)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import sys
 
 from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK
@@ -24,6 +25,25 @@ def summary(ds) -> str:
     return "\n".join(lines)
 
 
+def explained(ds, scene) -> list[str]:
+    """Why a summary value is NaN or infinite, in words (a bare 'nan' tells nothing)."""
+    lines = []
+    motion, ended = scene.motion, ds["converged"].item() != 1
+    reconnect, fraction = ds["reconnect_time"].item(), ds["open_fraction"].item()
+    if math.isnan(reconnect):
+        why = "the run ended before the contact reconnected" if ended else (
+            f"motion.kind = {motion.kind} never comes to rest: there is no reconnection to time")
+        lines.append(f"  reconnect_time = nan: {why}")
+    elif math.isinf(reconnect):
+        lines.append(f"  reconnect_time = inf: not reconnected within motion.duration = {motion.duration:g} s "
+                     f"(R stayed above {motion.reconnect_factor:g} x rest_resistance)")
+    if math.isnan(fraction):
+        why = "the run ended before the oscillation did" if ended and motion.kind == "oscillation" else (
+            f"only an oscillation has one (motion.kind = {motion.kind})")
+        lines.append(f"  open_fraction = nan: {why}")
+    return lines
+
+
 def run_transient(scene, out) -> int:
     try:
         ds = transient(scene)
@@ -33,10 +53,10 @@ def run_transient(scene, out) -> int:
     try:
         write_case(ds, out)
     except OSError as err:
-        print(summary(ds))
+        print("\n".join([summary(ds), *explained(ds, scene)]))
         print(f"lubecontact: could not write {out}: {err.strerror or err}; the result is lost", file=sys.stderr)
         return EXIT_NOT_CONVERGED
-    print(summary(ds))
+    print("\n".join([summary(ds), *explained(ds, scene)]))
     print(f"wrote {out}")
     if ds["converged"].item() != 1:
         print(f"lubecontact: the transient did NOT converge: {ds.attrs['notes']}", file=sys.stderr)

@@ -76,4 +76,5 @@ def solve_case(scene, fields: bool = False, initial: WarmStart | None = None):
         if getattr(state.reynolds, "content", None) is not None:  # effects.cavitation: jfo
             field_data["film_content"] = state.reynolds.content
     result = CaseResult.build(requested, scalars, field_data, mesh, model.effects_run, "; ".join(notes), ",".join(validity) or "ok")
-    return result, state
+    # one line per flag, for the CLI and a sweep (notes join everything with "; ")
+    return result.with_attrs(validity_notes="\n".join(f"{flag}: {note}" for flag, note in validity.items())), state

@@ -28,7 +28,7 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
         raise ValueError(f"speeds must be finite and >= 0 m/s, got {speeds.tolist()}")
     if progress is None:
         progress = sys.stderr.isatty()
-    cases = []
+    cases, flagged = [], []
     initial = previous_mesh = None
     for speed in tqdm(speeds, desc="speeds", unit="pt", disable=not progress):
         point = scene.replace({"operating.speed": float(speed)})
@@ -43,9 +43,11 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
                 initial.cavitated = state.reynolds.cavitated
                 initial.pressure = state.reynolds.pressure
         cases.append(ds.drop_vars("speed"))
+        flagged += [f"{speed:g} m/s: {line}" for line in ds.attrs["validity_notes"].splitlines()]
     out = xr.concat(cases, dim="speed", combine_attrs="drop_conflicts")
     out = out.assign_coords(speed=xr.Variable(("speed",), speeds, {"units": "m s-1", "long_name": "sliding speed U of the block"}))
     out.attrs["scene"] = scene.canonical_yaml()
     out.attrs["scene_hash"] = scene.hash
     out.attrs["note"] = "operating.speed of the scene is replaced by the speed coordinate"
+    out.attrs["validity_notes"] = "\n".join(flagged)  # each point's flags (they differ: concat drops them)
     return out
