@@ -28,8 +28,8 @@ include: "workflow/rules/collect.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/surfaces.smk"
-include: "workflow/rules/report.smk"
 include: "workflow/rules/transient.smk"
+include: "workflow/rules/report.smk"
 
 
 localrules:

@@ -11,6 +11,8 @@ scene); file signatures of PNG and PDF.
 """
 
 import contextlib
+import html.parser
+import json
 import re
 import shutil
 import subprocess
@@ -294,6 +296,46 @@ def test_products_pass_the_cf_checker(built):
     case = next((out / "cases").glob("*.nc"))
     files = [case, out / "data" / "fig03.nc", out / "data" / "fig04.nc", out / "data" / "accuracy_cost.nc", out / "accuracy" / "study.nc"]
     assert [f for path in files for f in cf_findings(path)] == []
+
+
+class LandingPage(html.parser.HTMLParser):
+    """The report's landing page as a reader sees it: its headings, the figures named in bold,
+    and docutils' system messages (warnings a broken page shows)."""
+
+    def __init__(self, report: str):
+        super().__init__()
+        self.headings, self.bold, self.messages, self._in = [], [], [], None
+        start = report.index('var workflow_desc = "') + len("var workflow_desc = ")
+        self.feed(json.JSONDecoder().raw_decode(report[start:])[0])
+
+    def handle_starttag(self, tag, attrs):
+        if tag in ("h1", "h2", "strong"):
+            self._in = tag
+        if "system-message" in (dict(attrs).get("class") or ""):
+            self.messages.append(dict(attrs))
+
+    def handle_endtag(self, tag):
+        self._in = None if tag == self._in else self._in
+
+    def handle_data(self, data):
+        if self._in in ("h1", "h2"):
+            self.headings.append(data.strip())
+        elif self._in == "strong":
+            self.bold.append(data.strip())
+
+
+@pytest.mark.slow
+def test_report_landing_page_names_every_figure_without_warnings(built):
+    """Issue 29 item 13: the page rendered (no docutils system message), headed for what the
+    run makes, and naming every figure of the run: the sweeps, the transients, the measured
+    surfaces and the accuracy study."""
+    snakemake(built, "--report", "report.html", *TINY)
+    page = LandingPage((built / "report.html").read_text(errors="replace"))
+    assert page.messages == []
+    assert "Figures 3-11" not in " ".join(page.headings)
+    assert {"The contact in time", "Measured surfaces", "What accuracy costs"} <= set(page.headings)
+    figures = {p.stem for p in (built / "results" / "test" / "figures").glob("*.png")}
+    assert figures and figures <= set(page.bold)
 
 
 @pytest.mark.slow

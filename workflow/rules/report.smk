@@ -1,6 +1,7 @@
 # What the HTML report's landing page (workflow/report/workflow.rst) says about this run:
 # lubecontact version, git commit of the tree, results directory and, for each figure, its
-# base scene and what it sweeps. Snakemake renders that page with the config only, so the
+# base scene and what it sweeps; the transient, surface and accuracy figures. Included last:
+# it reads what the other rule files define. Snakemake renders that page with the config only, so the
 # facts go into config["_run"] (a key no config file may set: the schema forbids it).
 
 import subprocess
@@ -37,9 +38,21 @@ def _figure_facts(figure):
     }
 
 
+def _transient_facts(name):
+    return {
+        "figure": f"transient_{name}",
+        "title": TRANSIENT["figures"][name]["title"],
+        "cases": len(TRANSIENT_CASES[name]),
+        "scene": TRANSIENT["base"],
+    }
+
+
 config["_run"] = {
     "version": lubecontact.__version__,
     "git": _git_state(workflow.basedir),
     "results": RESULTS,
     "figures": [_figure_facts(f) for f in FIGURES],
+    "transient": [_transient_facts(f.removeprefix("transient_")) for f in TRANSIENT_FIGURES],
+    "surfaces": SURFACE_FILES,
+    "accuracy": ", ".join(str(n) for n in ACCURACY["meshes"]) + " nodes a side",
 }
