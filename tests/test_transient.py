@@ -247,3 +247,55 @@ def test_a_relative_table_file_is_read_beside_the_scene(tmp_path, monkeypatch):
     (elsewhere / "speeds.txt").write_text("0 5.0\n1 0.0\n")  # a file of that name here is not read
     assert lc.load_scene(str(scenes / "s.yaml")).motion.table == scene.motion.table
     assert lc.load_scene(str(scenes / "s.yaml"), {"motion.table": "speeds.txt"}).hash == scene.hash
+
+
+def test_a_transient_reports_progress_and_keeps_its_series_when_terminated(tmp_path):
+    """Off a terminal a line per decade of simulated time reaches stderr; SIGTERM (or Ctrl-C)
+    ends the run with the series so far written, flagged, exit 130 (issue 29 item 3)."""
+    import signal
+    import subprocess
+    import sys
+
+    import xarray as xr
+
+    out = tmp_path / "series.nc"
+    cmd = [sys.executable, "-m", "lubecontact.cli.main", "transient", TABLE1, "--set", "mesh.nx=31", "--set", "mesh.ny=1",
+           "--set", "motion.kind=stop", "--set", "motion.duration=10", "--set", "motion.tolerance=1e-5", "--out", str(out)]
+    run = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    seen = []
+    for line in run.stderr:  # progress, a line per decade, before the run is over
+        seen.append(line)
+        if "t = 1e-04 s of 10 s reached" in line:
+            run.send_signal(signal.SIGTERM)
+            break
+    rest, _ = run.communicate(timeout=120)
+    assert run.returncode == 130, "".join(seen) + rest
+    assert [line.split(" s of")[0].split("= ")[1] for line in seen] == ["1e-09", "1e-08", "1e-07", "1e-06", "1e-05", "1e-04"]
+    with xr.open_dataset(out) as ds:
+        assert ds.attrs["interrupted"] == 1 and ds["converged"].item() == 0 and "interrupted at t =" in ds.attrs["notes"]
+        assert ds["time"].size > 10 and ds["time"].values[-1] >= 1e-4
+
+
+def test_a_stuck_step_gives_up_after_a_few_attempts(monkeypatch):
+    """Every time step fails: the run stops after MAX_FAILED_IN_A_ROW attempts at one step,
+    not after quartering dt down to 1e-15 s (55 attempts), and says so."""
+    from lubecontact.unsteady import integrator
+
+    attempts = []
+
+    def failing(self, levels, t_new, order):
+        attempts.append(t_new - levels[-1].time)
+        return None, "forced failure"
+
+    monkeypatch.setattr(integrator.TimeIntegrator, "step", failing)
+    scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.02})
+    series = lc.transient(scene, progress=False)
+    assert series["converged"].item() == 0 and len(attempts) == integrator.MAX_FAILED_IN_A_ROW
+    assert attempts == pytest.approx([attempts[0] / 4**k for k in range(len(attempts))])
+    assert f"({integrator.MAX_FAILED_IN_A_ROW} attempt(s) in a row): forced failure" in series.attrs["notes"]
+
+
+def test_a_steady_start_that_fails_says_why():
+    series = lc.transient(lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop",
+                                                  "solver.max_iterations": 1}), progress=False)
+    assert "the steady start did not converge: 1 iteration(s) without meeting" in series.attrs["notes"]

@@ -7,6 +7,7 @@ the traceback is saved to a file named in the message)."""
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 
 from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_NOT_CONVERGED, EXIT_OK
@@ -169,8 +170,14 @@ def _checked(args, scene, points: int):
     return out, est
 
 
+def _interrupt(signum, frame):
+    """SIGTERM (a cluster's time limit, ``kill``) as Ctrl-C: a transient keeps what it computed."""
+    raise KeyboardInterrupt
+
+
 def main(argv=None) -> int:
     args = _parser().parse_args(argv)
+    previous = signal.signal(signal.SIGTERM, _interrupt)
     try:
         return _run(args)
     except _BadInput as err:
@@ -190,6 +197,8 @@ def main(argv=None) -> int:
         print(f"lubecontact: internal error ({type(err).__name__}: {err}); this is a bug, please report it "
               f"to {REPORT_TO} with the traceback saved in {path}", file=sys.stderr)
         return EXIT_INTERNAL
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def _run(args) -> int:

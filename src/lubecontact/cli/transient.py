@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import sys
 
-from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK
+from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_NOT_CONVERGED, EXIT_OK
 from lubecontact.io.case_schema import write_case
 from lubecontact.scene import SceneError
 from lubecontact.unsteady.transient import transient
@@ -58,6 +58,10 @@ def run_transient(scene, out) -> int:
         return EXIT_NOT_CONVERGED
     print("\n".join([summary(ds), *explained(ds, scene)]))
     print(f"wrote {out}")
+    if ds.attrs["interrupted"]:
+        print(f"lubecontact: interrupted; the series up to t = {ds['time'].values[-1]:.6g} s is in {out} "
+              "(converged = 0)", file=sys.stderr)
+        return EXIT_INTERRUPTED
     if ds["converged"].item() != 1:
         print(f"lubecontact: the transient did NOT converge: {ds.attrs['notes']}", file=sys.stderr)
         return EXIT_NOT_CONVERGED

@@ -52,6 +52,10 @@ GROWTH, SHRINK, SAFETY = 4.0, 0.2, 0.9  # step-size controller limits
 FILM_FLOOR = 1.0e-10  # m: error floor of a smooth film (relative error above it)
 MIN_STEP = 1.0e-15  # s: below this a failing step ends the run, flagged
 MAX_STEPS = 20000
+# Coupled solves that fail in a row before the run gives up, flagged, with what it computed:
+# each failure quarters the step (4^6 = 4096 times shorter), and a step that six shorter
+# attempts cannot pass is stuck (a shorter step makes the squeeze film stiffer, not easier).
+MAX_FAILED_IN_A_ROW = 6
 
 
 @dataclass
@@ -187,53 +191,71 @@ class TimeIntegrator:
         level = Level(t_new, speed, state, gap, model, diag, order, error, model.squeeze.rate(gap))
         return level, error
 
-    def run(self, progress: bool = False):
-        """(levels, failure message or ''): accepted levels from t = 0 to the motion's end."""
+    def run(self, progress: bool = False, report=None):
+        """(levels, failure message or ''): accepted levels from t = 0 to the motion's end,
+        or up to where the run stopped: a step that failed MAX_FAILED_IN_A_ROW times or
+        below MIN_STEP, MAX_STEPS, or an interruption (KeyboardInterrupt, which a SIGTERM
+        handler may raise), whose failure message starts with "interrupted". ``report``
+        (a callable taking one line) hears each decade of simulated time reached (1e-6 s,
+        1e-5 s, ...): progress where no bar is shown."""
         from tqdm.auto import tqdm
 
         history = self.history
         self.wall_time = 0.0
         levels = [self.start()]
-        if not levels[0].diagnostics.converged:
-            return levels, "the steady start did not converge: " + levels[0].diagnostics.failure
+        start = levels[0].diagnostics
+        if not start.converged:
+            why = start.failure or f"{start.iterations} iteration(s) without meeting the tolerances"
+            return levels, f"the steady start did not converge: {why}"
         # a steady state has dh/dt = 0: a virtual earlier level makes the first predictor exact
         levels.insert(0, dataclasses.replace(levels[0], time=-FIRST_STEP))
         breaks = [b for b in history.breakpoints() if b > 0.0] + [history.end]
-        dt, order, failure = FIRST_STEP, 1, ""
+        dt, order, failure, failed = FIRST_STEP, 1, "", 0
         started = time.perf_counter()
+        decade = FIRST_STEP  # the next power of ten of simulated time to report
         bar = tqdm(total=history.end, unit="s", desc="transient", disable=not progress,
                    bar_format="{l_bar}{bar}| t = {n:.3g} of {total:.3g} s [{elapsed}] {postfix}")
-        with bar:
-            while levels[-1].time < history.end and len(levels) < MAX_STEPS:
-                t = levels[-1].time
-                target = next(b for b in breaks if b > t)
-                if history.rest_from is None or t < history.rest_from:
-                    dt = min(dt, history.max_step)
-                t_new = target if t + 1.1 * dt >= target else t + dt
-                level, outcome = self.step(levels, t_new, order)
-                if level is None:
-                    if t_new - t <= MIN_STEP:
-                        failure = f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge: {outcome}"
-                        break
-                    self.rejected += 1
-                    dt = 0.25 * (t_new - t)
-                    continue
-                factor = SAFETY * max(outcome, 1e-10) ** (-1.0 / (order + 1))
-                if outcome > 1.0 and t_new - t > MIN_STEP:
-                    self.rejected += 1
-                    dt = (t_new - t) * max(SHRINK, min(factor, 1.0))
-                    continue
-                levels.append(level)
-                bar.update(t_new - t)
-                bar.set_postfix_str(f"dt = {t_new - t:.2g} s, steps {len(levels) - 2}")
-                if t_new == target and target in breaks[:-1]:
-                    # U(t) is not smooth here: first order, from the last step's size (not
-                    # FIRST_STEP: a tiny step makes the squeeze film stiff beyond what the
-                    # coupled iteration resolves; the error control shortens it if needed)
-                    order = 1
-                    dt = t_new - t
-                else:
-                    dt, order = (t_new - t) * min(GROWTH, max(SHRINK, factor)), 2
+        try:
+            with bar:
+                while levels[-1].time < history.end and len(levels) < MAX_STEPS:
+                    t = levels[-1].time
+                    target = next(b for b in breaks if b > t)
+                    if history.rest_from is None or t < history.rest_from:
+                        dt = min(dt, history.max_step)
+                    t_new = target if t + 1.1 * dt >= target else t + dt
+                    level, outcome = self.step(levels, t_new, order)
+                    if level is None:
+                        failed += 1
+                        if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW:
+                            failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
+                                       f"({failed} attempt(s) in a row): {outcome}")
+                            break
+                        self.rejected += 1
+                        dt = 0.25 * (t_new - t)
+                        continue
+                    failed = 0
+                    factor = SAFETY * max(outcome, 1e-10) ** (-1.0 / (order + 1))
+                    if outcome > 1.0 and t_new - t > MIN_STEP:
+                        self.rejected += 1
+                        dt = (t_new - t) * max(SHRINK, min(factor, 1.0))
+                        continue
+                    levels.append(level)
+                    bar.update(t_new - t)
+                    bar.set_postfix_str(f"dt = {t_new - t:.2g} s, steps {len(levels) - 2}")
+                    while report is not None and t_new >= decade:
+                        report(f"t = {decade:.0e} s of {history.end:g} s reached: {len(levels) - 2} steps, "
+                               f"{self.rejected} rejected, {time.perf_counter() - started:.1f} s")
+                        decade *= 10.0
+                    if t_new == target and target in breaks[:-1]:
+                        # U(t) is not smooth here: first order, from the last step's size (not
+                        # FIRST_STEP: a tiny step makes the squeeze film stiff beyond what the
+                        # coupled iteration resolves; the error control shortens it if needed)
+                        order = 1
+                        dt = t_new - t
+                    else:
+                        dt, order = (t_new - t) * min(GROWTH, max(SHRINK, factor)), 2
+        except KeyboardInterrupt:
+            failure = f"interrupted at t = {levels[-1].time:.6g} s: the series up to there"
         if not failure and levels[-1].time < history.end:
             failure = f"stopped after {MAX_STEPS} steps at t = {levels[-1].time:.6g} s"
         self.wall_time = time.perf_counter() - started

@@ -29,13 +29,20 @@ def _rest_resistance(integrator) -> float:
     return instant(model, state)["contact_resistance"]
 
 
+def _to_stderr(line: str) -> None:
+    print(f"lubecontact: transient {line}", file=sys.stderr, flush=True)
+
+
 def transient(scene, progress: bool | None = None) -> xr.Dataset:
     """Integrate ``scene``'s motion in time; returns the Dataset along ``time`` (s).
 
     The run starts from the steady state at the motion's initial speed and keeps the
     cylinder in force balance at every instant (integrator.py). ``progress``: a bar on
-    stderr (default: when stderr is a terminal). A step that fails ends the run: the levels
-    so far are returned with ``converged = 0`` and the failure in ``notes``.
+    stderr (default: when stderr is a terminal); without it a line on stderr per decade of
+    simulated time. A step that fails ends the run, and so does an interruption (Ctrl-C, or
+    SIGTERM where the caller turns it into KeyboardInterrupt): the levels so far are
+    returned with ``converged = 0``, the reason in ``notes`` and, when interrupted, the
+    attribute ``interrupted = 1``.
     """
     scene = prepare(scene).scene
     problems = motion_problems(scene)
@@ -47,7 +54,7 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
 
     with one_blas_thread():  # one BLAS thread, as solve()
         integrator = TimeIntegrator(scene, history)
-        levels, failure = integrator.run(progress)
+        levels, failure = integrator.run(progress, report=None if progress else _to_stderr)
         rest = _rest_resistance(integrator)
     threshold = open_resistance(scene)
     series_t = np.array([lv.time for lv in levels])
@@ -78,4 +85,6 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     scalars["open_fraction"] = fraction
     notes.append(f"open threshold {threshold:g} ohm (interface.open_resistance, default {threshold:g})")
     notes.append(f"cavitation: {scene.effects.cavitation} (Swift-Stieber is not mass-conserving where a film re-forms)")
-    return series_dataset(scene, series_t, rows, scalars, "; ".join(notes), peaks)
+    series = series_dataset(scene, series_t, rows, scalars, "; ".join(notes), peaks)
+    series.attrs["interrupted"] = int(failure.startswith("interrupted"))
+    return series
