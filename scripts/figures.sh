@@ -4,4 +4,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-exec .venv/bin/snakemake --workflow-profile workflow/profiles/default "$@"
+# On a terminal, progress bars (the rich logger); redirected to a file or a pipe, a line per
+# started and finished job (snakemake's own logger), which a bar cannot give.
+logger=()
+if [ -t 1 ]; then
+    logger=(--logger rich)
+fi
+exec .venv/bin/snakemake --workflow-profile workflow/profiles/default "${logger[@]}" "$@"
