@@ -66,3 +66,20 @@ def test_speed_limit_map_and_reference_curves():
     hollow = [line for line in ax.get_lines() if line.get_markerfacecolor() == "white"]
     assert sum(len(line.get_xdata()) for line in hollow) == 3  # the three valid = 0 points
     assert "paper's model" in " ".join(t.get_text() for t in ax.get_legend().get_texts())
+
+
+def test_speed_limit_map_marks_cells_with_unconverged_solves_and_names_mu_and_sigma():
+    """Issue 29 item 10: a cell whose curve has a solve that did not converge is marked, and
+    the title says the lubricant's viscosity, the roughness and the speeds the map covers."""
+    coords = {"force": ("force", [1.0, 10.0], {"units": "N", "long_name": "normal force F"}),
+              "radius": ("radius", [2.5e-3, 1e-2], {"units": "m", "long_name": "cylinder radius R"})}
+    u = np.array(SPEEDS)
+    ds = dataset(np.array([[4 * u**2, 2 * u**2], [np.full(4, 1e-3), u]]), ("force", "radius", "speed"), coords)
+    ds["converged"][1, 0, 2] = 0  # force 10 N, radius 2.5 mm
+    fig = plotting.render(ds, {"kind": "speed_limit", "y": "contact_resistance", "x": ["speed"],
+                               "map": ["force", "radius"]}, "map")
+    ax = fig.axes[0]
+    crosses = [line for line in ax.get_lines() if line.get_marker() == "x"]
+    assert len(crosses) == 1 and list(crosses[0].get_xdata()) == [1.35] and list(crosses[0].get_ydata()) == [0.3]
+    assert "did not converge" in ax.get_legend().get_texts()[0].get_text()
+    assert "μ = 0.1 Pa s, σ = 0.5 µm" in fig.get_suptitle() and f"speeds {min(SPEEDS):g} to {max(SPEEDS):g} m/s" in fig.get_suptitle()

@@ -240,8 +240,17 @@ def render_speed_limit(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure
     ax.set_ylabel(f"{ds[y_dim].attrs.get('long_name', y_dim).split(' (')[0]} ({units.get(y_dim, unit_label(ds[y_dim].attrs.get('units', '')))})")
     bar = fig.colorbar(mesh, ax=ax)
     bar.set_label(f"highest sliding speed with R < {limit.attrs['open_resistance']:g} Ω (m/s)")
-    if title:
-        fig.suptitle(title, fontsize="medium")
+    # a cell with a solve that did not converge is marked, not trusted silently
+    failed = (ds["converged"].transpose(y_dim, x_dim, "speed").values == 0).any(axis=-1)
+    if failed.any():
+        rows, columns = np.nonzero(failed)
+        ax.plot(columns + 0.35, rows + 0.3, **NOT_CONVERGED_STYLE)
+        ax.legend([Line2D([], [], **NOT_CONVERGED_STYLE)], ["a solve of this cell did not converge"],
+                  loc="upper center", bbox_to_anchor=(0.5, -0.14), fontsize="small", frameon=False)
+    scene = yaml.safe_load(str(ds["scene"].values.flat[0]))
+    what = (f"μ = {scene['lubricant']['viscosity']:g} Pa s, σ = {scene['roughness']['sigma'] * 1e6:g} µm, "
+            f"speeds {speeds.min():g} to {speeds.max():g} m/s")
+    fig.suptitle(f"{title}\n{what}" if title else what, fontsize="medium")
     return fig
 
 
