@@ -83,3 +83,23 @@ def test_speed_limit_map_marks_cells_with_unconverged_solves_and_names_mu_and_si
     assert len(crosses) == 1 and list(crosses[0].get_xdata()) == [1.35] and list(crosses[0].get_ydata()) == [0.3]
     assert "did not converge" in ax.get_legend().get_texts()[0].get_text()
     assert "μ = 0.1 Pa s, σ = 0.5 µm" in fig.get_suptitle() and f"speeds {min(SPEEDS):g} to {max(SPEEDS):g} m/s" in fig.get_suptitle()
+
+
+def test_the_paper_models_resistance_axis_says_spots_only():
+    """Issue 29 item 12: Figs. 3-11 model the metal spots alone; their axis must not say 'whole path'."""
+    ds = dataset([[2e-4, 2e-4, 3e-4, 1e3]], ("sigma", "speed"),
+                 {"sigma": ("sigma", [0.5e-6], {"units": "m", "long_name": "sigma"})})
+    ds["contact_resistance"].attrs["long_name"] = "electrical contact resistance of the whole path (spots, film, cluster)"
+    label = plotting.render(ds, {"y": "contact_resistance", "x": ["speed"]}).axes[0].get_ylabel()
+    assert "metal spots" in label and "whole path" not in label
+    full = load_scene({"effects": {"film_conduction": True}}).canonical_yaml()
+    ds["scene"][...] = full
+    label = plotting.render(ds, {"y": "contact_resistance", "x": ["speed"]}).axes[0].get_ylabel()
+    assert "whole path" in label
+
+
+def test_a_surface_file_is_named_in_the_legend_not_its_path():
+    surfaces = {"surface": ("surface", ["../surfaces/ground.asc", "../surfaces/honed.asc"], {"units": "1", "long_name": "surface"})}
+    ds = dataset([[2e-4, 2e-4, 3e-4, 1e3], [1e-4, 1e-4, 2e-4, 1e2]], ("surface", "speed"), surfaces)
+    fig = plotting.render(ds, {"y": "contact_resistance", "x": ["speed"], "legend": {"label": "{surface}"}})
+    assert [t.get_text() for t in fig.axes[0].get_legend().get_texts()][:2] == ["ground.asc", "honed.asc"]

@@ -299,3 +299,16 @@ def test_a_steady_start_that_fails_says_why():
     series = lc.transient(lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop",
                                                   "solver.max_iterations": 1}), progress=False)
     assert "the steady start did not converge: 1 iteration(s) without meeting" in series.attrs["notes"]
+
+
+def test_transient_figure_labels_name_no_config_key():
+    """Issue 29 item 12: legends and axes of the transient figures are words and units."""
+    import re
+
+    from lubecontact.studies import transient_cases as study
+
+    cases = study.figure_cases(study.study_spec("config/transient.yaml", None))
+    labels = [case["label"] for group in cases.values() for case in group]
+    assert labels and not [label for label in labels if re.search(r"\b[a-z_]+\.[a-z_]+\b", label)]
+    assert study.key_words("lubricant.viscosity") == "dynamic viscosity mu"
+    assert study.key_words("operating.force") == "normal force on the cylinder F"

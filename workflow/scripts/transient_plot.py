@@ -18,7 +18,7 @@ with open(snakemake.log[0], "w") as log:
         fig = plots.stop_figure([(c["label"], ds) for c, ds in zip(cases, data)], spec["title"])
     elif name == "reconnect":
         points = [{**c, "ds": ds} for c, ds in zip(cases, data)]
-        fig = plots.reconnect_figure(points, spec["x"], study.key_units(spec["x"]), spec["title"])
+        fig = plots.reconnect_figure(points, study.key_words(spec["x"]), study.key_units(spec["x"]), spec["title"])
     else:
         fig = plots.vibration_figure(data[0], spec["title"])
     save(fig, [snakemake.output.png, snakemake.output.pdf])

@@ -16,6 +16,7 @@ Library code: uses matplotlib's object API (no pyplot state), reads no files.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 
 import numpy as np
 import xarray as xr
@@ -81,8 +82,11 @@ def x_quantity(ds: xr.Dataset, name: str) -> xr.DataArray:
 
 
 def _display(ds: xr.Dataset, coord: str, unit: str | None) -> float:
-    """A 0-d coordinate in the display unit (its own unit when None)."""
+    """A 0-d coordinate in the display unit (its own unit when None); a file (a measured
+    surface) by its name, not the path the scene gave."""
     value = ds[coord].values.item()
+    if isinstance(value, str):
+        return Path(value).name
     if unit is None:
         return value
     if unit not in DISPLAY_UNITS:
@@ -148,7 +152,7 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "", reference: xr.Dataset
             _draw_reference(ax, reference, x_name, y_name, dims, colours)
         ax.set_xlabel(axis_label(x_all.attrs["long_name"], x_all.attrs["units"]))
         ax.grid(True, which="major", alpha=0.3)
-    axes[0].set_ylabel(axis_label(y.attrs["long_name"], y.attrs["units"]))
+    axes[0].set_ylabel(axis_label(_long_name(ds, y_name), y.attrs["units"]))
     handles, labels = axes[-1].get_legend_handles_labels()
     if marks["not converged"]:
         handles.append(Line2D([], [], **NOT_CONVERGED_STYLE))
@@ -168,6 +172,17 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "", reference: xr.Dataset
     if title:
         fig.suptitle(title, fontsize="medium")
     return fig
+
+
+def _long_name(ds: xr.Dataset, name: str) -> str:
+    """The variable's long name, or for contact_resistance the path the cases modelled: the
+    paper's model has the metal spots only (no film conduction, no cluster constriction)."""
+    if name != "contact_resistance" or "scene" not in ds:
+        return ds[name].attrs["long_name"]
+    effects = yaml.safe_load(str(ds["scene"].values.flat[0])).get("effects") or {}
+    if effects.get("macro_constriction") or effects.get("film_conduction"):
+        return ds[name].attrs["long_name"]
+    return "contact resistance of the metal spots (the paper's model)"
 
 
 def _draw_reference(ax, reference: xr.Dataset, x_name: str, y_name: str, dims: Sequence[str], colours) -> None:

@@ -49,6 +49,9 @@ def stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
     return fig
 
 
+SERIES_MARKERS = ("o", "s", "D", "^", "v")
+
+
 def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str) -> Figure:
     """points: {"x", "series", "label", "ds"} of the design chart."""
     fig = Figure(figsize=(6.5, 4.5), layout="constrained")
@@ -63,7 +66,9 @@ def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str)
         ok = np.array([int(p["ds"]["converged"]) == 1 for p in line])
         color = f"C{i}"
         drawn = np.isfinite(y) & (y > 0) & ok
-        ax.loglog(x[drawn], y[drawn], "o-", color=color, label=line[0]["label"])
+        # series that coincide stay visible: each its own marker, the later ones smaller and on top
+        ax.loglog(x[drawn], y[drawn], "-", marker=SERIES_MARKERS[i % len(SERIES_MARKERS)], markersize=max(9 - 2 * i, 3),
+                  color=color, label=line[0]["label"], zorder=2 + i)
         never = ~np.isfinite(y) & ok
         ax.plot(x[never], np.full(never.sum(), top), "^", color=color)
         already = (y == 0) & ok
@@ -97,5 +102,7 @@ def vibration_figure(ds, title: str) -> Figure:
     details = (f"amplitude {motion['amplitude'] * 1e3:g} mm at {motion['frequency']:g} Hz, "
                f"\u03bc = {scene['lubricant']['viscosity']:g} Pa s, F = {scene['operating']['force']:g} N")
     fraction = float(ds["open_fraction"])
-    top.set_title(f"{title}: {details}\nopen {100 * fraction:.0f} % of the oscillation time", fontsize=9)
+    open_text = "open fraction unknown (the run ended early)" if math.isnan(fraction) else (
+        f"open {100 * fraction:.0f} % of the oscillation time")
+    fig.suptitle(f"{title}\n{details}; {open_text}", fontsize=9)  # wraps on its own lines: never cut
     return fig

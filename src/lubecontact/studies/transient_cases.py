@@ -46,7 +46,7 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
     chart = figures["reconnect"]
     (series_key, series_values), = chart["series"].items()
     out["reconnect"] = [
-        {"label": f"{series_key} = {s:g} {key_units(series_key)}", "x": x, "series": s,
+        {"label": f"{key_words(series_key)} = {s:g} {key_units(series_key)}", "x": x, "series": s,
          "overrides": {**(chart.get("set") or {}), chart["x"]: x, series_key: s}}
         for s in series_values for x in chart["values"]
     ]
@@ -55,6 +55,14 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
         for case in cases:
             case["id"] = _scene(spec, case["overrides"]).hash
     return out
+
+
+def key_words(dotted: str) -> str:
+    """What a scene key is, in words (its schema doc without the parenthesis), e.g.
+    'dynamic viscosity mu' for lubricant.viscosity: figure labels name no config key."""
+    section, name = dotted.split(".")
+    doc = next(f for f in fields(SECTIONS[section]) if f.name == name).metadata["doc"]
+    return doc.split(" (")[0]
 
 
 def key_units(dotted: str) -> str:
