@@ -312,3 +312,19 @@ def test_transient_figure_labels_name_no_config_key():
     assert labels and not [label for label in labels if re.search(r"\b[a-z_]+\.[a-z_]+\b", label)]
     assert study.key_words("lubricant.viscosity") == "dynamic viscosity mu"
     assert study.key_words("operating.force") == "normal force on the cylinder F"
+
+
+def test_a_billion_cycles_are_refused_before_anything_runs():
+    """Issue 29 item 4: a motion that needs more steps than a run may take is refused at once,
+    with the bound (40 steps a period, 20000 steps a run), by transient and by show."""
+    import time
+
+    from lubecontact.cli.main import main
+
+    scene = lc.load_scene(TABLE1, {"motion.kind": "oscillation", "motion.cycles": 1_000_000_000})
+    start = time.perf_counter()
+    with pytest.raises(lc.SceneError, match="needs at least 4e"):
+        lc.transient(scene)
+    assert time.perf_counter() - start < 1.0
+    assert main(["transient", TABLE1, "--set", "motion.kind=oscillation", "--set", "motion.cycles=1000000000",
+                 "--out", "never.nc"]) == 2

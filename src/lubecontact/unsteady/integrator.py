@@ -46,12 +46,12 @@ from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.fluid_film import fluid_film
 from lubecontact.model.model import Model, SolveError
 from lubecontact.numerics.mesh import build_mesh
+from lubecontact.unsteady.motion import MAX_STEPS
 
 FIRST_STEP = 1.0e-9  # s: first step from the steady start
 GROWTH, SHRINK, SAFETY = 4.0, 0.2, 0.9  # step-size controller limits
 FILM_FLOOR = 1.0e-10  # m: error floor of a smooth film (relative error above it)
 MIN_STEP = 1.0e-15  # s: below this a failing step ends the run, flagged
-MAX_STEPS = 20000
 # Coupled solves that fail in a row before the run gives up, flagged, with what it computed:
 # each failure quarters the step (4^6 = 4096 times shorter), and a step that six shorter
 # attempts cannot pass is stuck (a shorter step makes the squeeze film stiffer, not easier).

@@ -16,6 +16,7 @@ import numpy as np
 
 # Steps per oscillation period at most: the integrator must resolve each cycle.
 STEPS_PER_PERIOD = 40
+MAX_STEPS = 20000  # time steps of one run; a motion that needs more is refused before it starts
 
 
 @dataclass(frozen=True)
@@ -94,6 +95,16 @@ def motion_problems(scene) -> list[str]:
             f"motion.kind = {scene.motion.kind!r}: smooth surfaces (effects.asperity_contact = false) cannot carry "
             "the load at rest, where this motion starts; allowed: enable asperity_contact, or a motion that starts sliding"
         )
+    history = SpeedHistory.from_scene(scene)
+    if history.period is not None:
+        moving = history.rest_from if history.rest_from is not None else history.end
+        needed = moving / history.max_step
+        if needed > MAX_STEPS:
+            problems.append(
+                f"motion.cycles = {scene.motion.cycles} at motion.frequency = {scene.motion.frequency:g} Hz needs at "
+                f"least {needed:.3g} time steps ({STEPS_PER_PERIOD} a period); allowed: at most {MAX_STEPS} steps, "
+                f"about {MAX_STEPS // STEPS_PER_PERIOD} cycles"
+            )
     if scene.effects.cavitation == "jfo":
         problems.append(
             "effects.cavitation = 'jfo': the transient's squeeze term is built on the Reynolds condition so far "
