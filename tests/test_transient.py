@@ -199,6 +199,12 @@ def test_cli_transient_writes_the_series_and_exits_3_when_a_step_fails(tmp_path,
             "mesh.ny": 1, "mesh.nx": 31, "motion.kind": "stop", "motion.duration": 0.02, "operating.speed": 1.0,
             "motion.tolerance": 1e-2}).hash
         assert 0.0 < ds["reconnect_time"].item() < 0.02
+        # validity along time, as a steady case has it (issue 29 item 8): per instant and in words
+        assert ds["valid"].dtype.kind == "i" and ds["valid"].attrs["units"] == "1"
+        raised = ds.attrs["validity"].split(",")
+        assert (ds["valid"].values == 0).any() == (raised != ["ok"])
+        assert [line.split(":")[0] for line in ds.attrs["validity_notes"].splitlines()] == [f for f in raised if f != "ok"]
+    assert all(f"validity {flag}: from t =" in printed for flag in raised if flag != "ok")
     failed = tmp_path / "failed.nc"
     assert main(common + ["--set", "solver.max_iterations=1", "--out", str(failed)]) == 3
     assert "reconnect_time = nan: the run ended before the contact reconnected" in capsys.readouterr().out

@@ -37,6 +37,10 @@ def explained(ds, scene) -> list[str]:
     elif math.isinf(reconnect):
         lines.append(f"  reconnect_time = inf: not reconnected within motion.duration = {motion.duration:g} s "
                      f"(R stayed above {motion.reconnect_factor:g} x rest_resistance)")
+    valid = ds["valid"].values == 1
+    lines.append(f"{'valid':>22s} = " + ("yes at every instant (every sub-model within its range)" if valid.all() else
+                                         f"NO at {int((~valid).sum())} of {valid.size} instants: left a sub-model's ground"))
+    lines += [f"  validity {line}" for line in ds.attrs["validity_notes"].splitlines()]
     if math.isnan(fraction):
         why = "the run ended before the oscillation did" if ended and motion.kind == "oscillation" else (
             f"only an oscillation has one (motion.kind = {motion.kind})")

@@ -11,6 +11,7 @@ import xarray as xr
 from lubecontact.io.case_schema import SCALARS as CASE
 from lubecontact.io.version import package_version
 from lubecontact.model.outputs import point_outputs
+from lubecontact.model.validity import assess
 from lubecontact.numerics.reynolds import boundary_flux, interior_nodes
 
 # name: (units, long_name), along ``time``; a quantity that means what it means in a case
@@ -30,6 +31,7 @@ SERIES = {
     "order": ("1", "order of the BDF formula of the step (0: the steady start)"),
     "error_estimate": ("1", "estimated local error of the step / its tolerance (accepted: <= 1)"),
     "volume_balance": ("1", "net outflow of the full-film region + its volume change rate, relative to the flows"),
+    "valid": CASE["valid"],
 }
 SCALARS = {
     "reconnect_time": ("s", "time after the motion stops until contact_resistance first falls to "
@@ -44,7 +46,7 @@ SCALARS = {
     "open_fraction": ("1", "oscillation: fraction of the oscillation time with the contact open"),
 }
 CYCLE = {"peak_resistance": ("ohm", "oscillation: largest contact resistance in each cycle")}
-INTEGER = ("step_converged", "iterations", "order", "converged", "steps", "rejected_steps", "coupled_solves")
+INTEGER = ("step_converged", "iterations", "order", "converged", "steps", "rejected_steps", "coupled_solves", "valid")
 
 
 def open_resistance(scene) -> float:
@@ -115,11 +117,30 @@ def oscillation_metrics(time, resistance, period, cycles, threshold) -> tuple[fl
 
 
 def level_rows(levels) -> list[dict]:
-    """The values of SERIES at each level."""
-    return [instant(lv.model, lv.state) | {
-        "step_converged": int(lv.diagnostics.converged), "iterations": lv.diagnostics.iterations,
-        "order": lv.order, "error_estimate": lv.error, "volume_balance": volume_balance(lv),
-    } for lv in levels]
+    """The values of SERIES at each level, and under "validity" the flags the level raises
+    (model/validity.assess, as a steady case's: flag -> note)."""
+    rows = []
+    for lv in levels:
+        flags = assess(lv.model.scene, lv.model.mesh, lv.model.contact, lv.state, lv.model.hydrodynamic)
+        rows.append(instant(lv.model, lv.state) | {
+            "step_converged": int(lv.diagnostics.converged), "iterations": lv.diagnostics.iterations,
+            "order": lv.order, "error_estimate": lv.error, "volume_balance": volume_balance(lv),
+            "valid": int(not flags), "validity": flags,
+        })
+    return rows
+
+
+def validity_over_time(times, rows) -> tuple[str, str]:
+    """(the flags raised at any instant, comma-separated or "ok"; one line per flag: when it
+    is first and last raised, and its note at the first time)."""
+    first, last, notes = {}, {}, {}
+    for t, row in zip(times, rows):
+        for flag, note in row["validity"].items():
+            first.setdefault(flag, t)
+            notes.setdefault(flag, note)
+            last[flag] = t
+    lines = [f"{flag}: from t = {first[flag]:.4g} to {last[flag]:.4g} s; at first: {notes[flag]}" for flag in first]
+    return ",".join(first) or "ok", "\n".join(lines)
 
 
 def series_dataset(scene, times, rows, scalars: dict, notes: str, peaks=None) -> xr.Dataset:

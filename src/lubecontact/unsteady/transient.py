@@ -15,7 +15,15 @@ from lubecontact.numerics.blas_threads import one_blas_thread
 from lubecontact.scene import SceneError
 from lubecontact.unsteady.integrator import TimeIntegrator, scene_at
 from lubecontact.unsteady.motion import SpeedHistory, motion_problems
-from lubecontact.unsteady.series import instant, level_rows, open_resistance, oscillation_metrics, reconnect_time, series_dataset
+from lubecontact.unsteady.series import (
+    instant,
+    level_rows,
+    open_resistance,
+    oscillation_metrics,
+    reconnect_time,
+    series_dataset,
+    validity_over_time,
+)
 
 
 def _rest_resistance(integrator) -> float:
@@ -87,4 +95,5 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     notes.append(f"cavitation: {scene.effects.cavitation} (Swift-Stieber is not mass-conserving where a film re-forms)")
     series = series_dataset(scene, series_t, rows, scalars, "; ".join(notes), peaks)
     series.attrs["interrupted"] = int(failure.startswith("interrupted"))
+    series.attrs["validity"], series.attrs["validity_notes"] = validity_over_time(series_t, rows)
     return series
