@@ -12,7 +12,7 @@ which tends to h for H >> 1 and to 0+ (never negative) for H -> -inf.
 
 Eq. (2) is fitted for H > 0.5 only; it turns negative below H ~ -0.19 and h^3 turns negative
 with h. Below H = 0.5 the Poiseuille coefficient follows the expected gap
-(docs/DESIGN.md, "Physics: conventions"):
+(docs/DESIGN.md, "Physics conventions"):
 
     k(H) = phi_x(H) h^3 / (12 mu)                       H >= 0.5
     k(H) = k(0.5) [h_T(H) / h_T(0.5)]^3                 H <  0.5
