@@ -3,6 +3,8 @@ number, docs/DESIGN.md sections by heading, and no comment cites a file the repo
 not carry or a benchmark log as its authority."""
 
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -63,3 +65,11 @@ def test_no_citation_leaves_the_repository(pattern, why):
 def test_the_citation_parser_reads_what_the_code_writes():
     assert cited_sections("see docs/physics.md sections 12-13 and docs/physics.md section 4") == {4, 12, 13}
     assert cited_sections("(docs/physics.md sections 2 and 18)") == {2, 18}
+
+
+def test_the_scene_keys_table_in_config_readme_is_current():
+    """config/README.md's table of scene keys is written from the schema; a key added,
+    renamed or given another default without rewriting it fails here."""
+    done = subprocess.run([sys.executable, str(ROOT / "scripts" / "scene_keys.py"), "--check"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
