@@ -10,8 +10,8 @@ scene calls for").
    26 speeds 1e-4-10 m/s) on a 31 x 21 mesh: auto against all effects, the largest
    deviations, what was dropped where, and the time saved.
 
-Writes its section of bench/RESULTS_effects.md (between the markers below; the rest of the
-file is kept) and prints it. Run from the repository root:
+Writes its section of bench/out/effects_cost.md (between the markers below; the rest of the
+file is kept; --out for another file) and prints it. Run from the repository root:
 
     .venv/bin/python bench/effects_cost.py            # ~5-10 min on one idle core
     .venv/bin/python bench/effects_cost.py --quick    # ~2 min
@@ -160,7 +160,7 @@ def main(argv=None) -> int:
     p.add_argument("--quick", action="store_true", help="51 and 101 nodes a side instead of 51 and 201")
     p.add_argument("--repeat", type=int, default=2, help="runs per solve on meshes up to 101 (best is kept)")
     p.add_argument("--no-validation", action="store_true", help="skip the Fig. 4 auto-vs-full comparison")
-    p.add_argument("--out", default=str(ROOT / "bench/RESULTS_effects.md"))
+    p.add_argument("--out", default=str(ROOT / "bench/out/effects_cost.md"))
     args = p.parse_args(argv)
     sizes = (51, 101) if args.quick else (51, 201)
     start = time.perf_counter()
@@ -172,6 +172,7 @@ def main(argv=None) -> int:
     if not args.no_validation:
         lines += validation(31, 21, DEFAULT_TOLERANCE)
     lines.append(f"Total bench time {time.perf_counter() - start:.0f} s.")
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
     write_section(Path(args.out), lines)
     print("\n".join(lines))
     return 0

@@ -1,4 +1,4 @@
-"""Inlet-length sensitivity of the contact resistance (physics.md section 17; issue 10).
+"""Inlet-length sensitivity of the contact resistance (docs/physics.md section 17; issue 10).
 
 For Table 1 (F = 5 N, 51 x 51 unless --line) at the given speeds: solve on the automatic
 domain, then with the inlet lengthened by --factor at the same node spacing (more nodes),

@@ -11,8 +11,8 @@ Writes bench/out/<timestamp>.json and .md (git-ignored) and prints the compariso
 previous run in bench/out. Progress goes to stderr, the report to stdout. Not a test:
 numbers depend on the machine and on what else runs on it (the load average at the start is
 recorded; CPU time is reported beside wall time because it is much less sensitive to other
-processes). bench/README.md tells what each number means; bench/RESULTS.md keeps the numbers
-measured on the project's machine.
+processes). bench/README.md tells what each number means; ``--write bench/CURRENT.md`` keeps
+the numbers measured on the project's machine.
 
 Each mesh runs in its own Python process, so its peak resident memory (getrusage) is its
 own: a warm-up solve first (imports, FFT plans), then ``repeats`` timed solves
@@ -51,7 +51,7 @@ STARTUP_PROCESSES = 3  # fresh processes for the 51^2 start-up (median)
 # The transient cost guard: Table 1 at 51^2 with a 1 Pa s oil, stopped from 1 m/s over 1 ms
 # and followed for 30 s (config/transient.yaml's stop curve "mu = 1 Pa s"). No test watches
 # the transients' cost: a warm-started CG once passed the suite and the steady figures while
-# this scene went from 240 to 5800 factorisations (bench/RESULTS.md, issue 14, fifth session).
+# this scene went from 240 to 5800 factorisations (bench/HISTORY.md, issue 14, fifth session).
 TRANSIENT_SET = {"mesh.nx": 51, "mesh.ny": 51, "lubricant.viscosity": 1.0, "operating.speed": 1.0,
                  "motion.kind": "stop", "motion.ramp": 1.0e-3, "motion.duration": 30.0}
 PAPER_FIGURES = [f"fig{i:02d}" for i in range(3, 12)]  # the paper's Figs. 3-11

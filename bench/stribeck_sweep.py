@@ -2,7 +2,7 @@
 
 Prints, per speed, resistance, friction coefficient, fluid load fraction and minimum film,
 and writes them as JSON (``--out``), so that a change of the near-contact flow or of the
-friction model can be measured before and after (bench/RESULTS_flow.md).
+friction model can be measured before and after (earlier results: bench/HISTORY.md).
 
     PYTHONPATH=src python bench/stribeck_sweep.py [--nodes 51] [--speeds 11] [--set effects.cavitation=jfo] [--out f.json]
 
