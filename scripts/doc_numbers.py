@@ -1,7 +1,8 @@
-"""Write the numbers the docs quote about the default run (cases, chunks, figures, cluster
-submissions) into README.md and results/README.md, from the workflow's own planning, so no
-such number is typed by hand. Each stands between markers ``<!-- planned:NAME -->`` and
-``<!-- /planned -->``. ``--check`` only says whether both files are current (exit 1 if
+"""Write the numbers the docs quote into README.md and results/README.md, so no such number
+is typed by hand: the default run's cases, chunks, figures and cluster submissions, from the
+workflow's own planning (between ``<!-- planned:NAME -->`` and ``<!-- /planned -->``), and
+a few cheap solves (51 x 51, seconds in all) between ``<!-- solved:NAME -->`` and
+``<!-- /solved -->``. ``--check`` only says whether both files are current (exit 1 if
 not); tests/test_docs.py runs it.
 
     .venv/bin/python scripts/doc_numbers.py           # rewrite the numbers
@@ -16,11 +17,24 @@ from pathlib import Path
 
 import yaml
 
+from lubecontact.model.solve import solve
+from lubecontact.scene import load_scene
 from lubecontact.studies import figure_grids, transient_cases
 
 ROOT = Path(__file__).resolve().parents[1]
 FILES = [ROOT / "README.md", ROOT / "results" / "README.md"]
-MARK = re.compile(r"<!-- planned:(\w+) -->(.*?)<!-- /planned -->", re.S)
+MARK = re.compile(r"<!-- (planned|solved):(\w+) -->(.*?)<!-- /(?:planned|solved) -->", re.S)
+TABLE1 = ROOT / "config" / "scenes" / "table1.yaml"
+# solved numbers: name -> overrides of Table 1 (51 x 51, F = 5 N); the contact resistance, ohm
+SOLVED = {
+    **{f"fig04_10_{tag}": {"operating.speed": 10.0, "roughness.sigma": sigma}
+       for tag, sigma in (("s025", 0.25e-6), ("s05", 0.5e-6), ("s1", 1e-6), ("s2", 2e-6))},
+    # Fig. 4 with alpha fixed: sigma R_peak = 0.5 um x 100 um
+    **{f"alpha_10_{tag}": {"operating.speed": 10.0, "roughness.sigma": sigma, "roughness.asperity_radius": 5e-11 / sigma}
+       for tag, sigma in (("s025", 0.25e-6), ("s1", 1e-6), ("s2", 2e-6))},
+    **{f"{name}_10": {"operating.speed": 10.0, "roughness.surface": f"../surfaces/{name}.asc"}
+       for name in ("ground", "honed")},
+}
 PAPER = [f"fig{n:02d}" for n in range(3, 12)]
 
 
@@ -42,6 +56,7 @@ def numbers() -> dict[str, str]:
     profile = yaml.safe_load((ROOT / "workflow" / "profiles" / "slurm" / "config.yaml").read_text())
     per_submission = profile["group-components"]["solve"]
     return {
+        **{name: None for name in SOLVED},  # solved on demand (solved_numbers)
         "paper_cases": str(len(paper_cases)),
         "paper_chunks": str(len(paper_chunks)),
         "cases": str(len(all_cases)),
@@ -52,13 +67,42 @@ def numbers() -> dict[str, str]:
     }
 
 
-def current(text: str, values: dict[str, str]) -> str:
+def shown(ohm: float) -> str:
+    """A resistance as the docs print it: 3 digits between 0.01 and 1e4, else 2.0e21 style."""
+    if 1e-2 <= ohm < 1e4:
+        return f"{ohm:.{max(0, 2 - math.floor(math.log10(ohm)))}f}"
+    mantissa, exponent = f"{ohm:.1e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def solved_number(name: str) -> str:
+    ds = solve(load_scene(TABLE1, SOLVED[name]))
+    if int(ds["converged"]) != 1:
+        raise RuntimeError(f"{name}: the solve did not converge; no number is quoted from it")
+    return shown(float(ds["contact_resistance"]))
+
+
+def current(text: str, values: dict) -> str:
     def fill(match):
-        if match.group(1) not in values:
-            raise KeyError(f"unknown planned number {match.group(1)!r}; known: {', '.join(values)}")
-        return f"<!-- planned:{match.group(1)} -->{values[match.group(1)]}<!-- /planned -->"
+        kind, name = match.group(1), match.group(2)
+        if name not in values:
+            raise KeyError(f"unknown {kind} number {name!r}; known: {', '.join(values)}")
+        if values[name] is None:
+            values[name] = solved_number(name)
+        return f"<!-- {kind}:{name} -->{values[name]}<!-- /{kind} -->"
 
     return MARK.sub(fill, text)
+
+
+def _same(kind: str, old: str, new: str) -> bool:
+    """A planned number exactly; a solved one within 1 % (round-off of another BLAS may move
+    its last printed digit)."""
+    if kind == "planned" or old == new:
+        return old == new
+    try:
+        return math.isclose(float(old), float(new), rel_tol=1e-2)
+    except ValueError:
+        return False
 
 
 def main(argv=None) -> int:
@@ -70,12 +114,14 @@ def main(argv=None) -> int:
     for path in FILES:
         text = path.read_text()
         wanted = current(text, values)
-        if wanted != text:
-            stale.append(str(path.relative_to(ROOT)))
-            if not args.check:
-                path.write_text(wanted)
+        if args.check:
+            stale += [f"{path.relative_to(ROOT)}: {name} = {old} (now {new})"
+                      for (kind, name, old), (_, _, new) in zip(MARK.findall(text), MARK.findall(wanted))
+                      if not _same(kind, old, new)]
+        elif wanted != text:
+            path.write_text(wanted)
     if args.check and stale:
-        print(f"not current: {', '.join(stale)}: run python scripts/doc_numbers.py", file=sys.stderr)
+        print("not current (run python scripts/doc_numbers.py):\n" + "\n".join(stale), file=sys.stderr)
         return 1
     return 0
 
