@@ -103,3 +103,20 @@ def test_a_surface_file_is_named_in_the_legend_not_its_path():
     ds = dataset([[2e-4, 2e-4, 3e-4, 1e3], [1e-4, 1e-4, 2e-4, 1e2]], ("surface", "speed"), surfaces)
     fig = plotting.render(ds, {"y": "contact_resistance", "x": ["speed"], "legend": {"label": "{surface}"}})
     assert [t.get_text() for t in fig.axes[0].get_legend().get_texts()][:2] == ["ground.asc", "honed.asc"]
+
+
+def test_each_kind_of_breach_has_its_own_marker_and_words():
+    """Issue 29 item 9: a point's validity flags are drawn each with its own hollow marker,
+    and the legend says in words what each means, with its bound."""
+    from lubecontact.io.case_schema import VALIDITY_FLAGS
+
+    sigma = {"sigma": ("sigma", [0.5e-6], {"units": "m", "long_name": "sigma"})}
+    ds = dataset([[2e-4, 2e-4, 3e-4, 1e3]], ("sigma", "speed"), sigma, valid=np.array([[0, 0, 1, 1]], np.int32))
+    gw, bulk = 1 << VALIDITY_FLAGS.index("gw_area"), 1 << VALIDITY_FLAGS.index("bulk_yield")
+    ds["validity_flags"] = (("sigma", "speed"), np.array([[gw | bulk, gw, 0, 0]], np.int32), {"units": "1", "long_name": "f"})
+    ax = plotting.render(ds, {"y": "contact_resistance", "x": ["speed"]}).axes[0]
+    markers = {line.get_marker(): len(line.get_xdata()) for line in ax.get_lines() if line.get_markerfacecolor() == "none"}
+    assert markers == {"s": 2, "P": 1}
+    legend = " ".join(t.get_text() for t in ax.get_legend().get_texts())
+    assert "A_r/A_n > 0.1: beyond GW's light contact" in legend and "pressure > 1.67 S_y: bulk yield" in legend
+    assert "flow factors" not in legend  # only the kinds raised

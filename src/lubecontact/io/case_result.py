@@ -16,7 +16,7 @@ import netCDF4
 import numpy as np
 
 from lubecontact.io.atomic_write import atomic_path
-from lubecontact.io.case_schema import FIELDS, INTEGER_SCALARS, SCALARS, history_line
+from lubecontact.io.case_schema import EXTRA_ATTRS, FIELDS, INTEGER_SCALARS, SCALARS, history_line
 from lubecontact.io.version import package_version
 
 _COORDS = {
@@ -27,7 +27,8 @@ _COORDS = {
 
 def _attrs(table, name):
     units, long_name = table[name]
-    return {"units": units, "long_name": long_name}
+    extra = {k: np.asarray(v, dtype=np.int32) if k == "flag_masks" else v for k, v in EXTRA_ATTRS.get(name, {}).items()}
+    return {"units": units, "long_name": long_name, **extra}
 
 
 @dataclass(frozen=True)

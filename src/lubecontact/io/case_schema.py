@@ -41,6 +41,16 @@ SCALARS = {
     "clamped_nodes": ("1", "nodes where A_r/A_n was clamped for the alleviation factor (Eq. 16)"),
     "speed": ("m s-1", "sliding speed U of the block"),
     "valid": ("1", "1 if the case stays within every sub-model's range, else 0 (see the validity attribute)"),
+    "validity_flags": ("1", "the validity flags a case raised, a bit field (CF flag_masks / flag_meanings)"),
+}
+
+# The validity flags (model/validity.py) in the order of their bits in ``validity_flags``:
+# the file's contract, so that a figure can mark each kind of breach its own way.
+VALIDITY_FLAGS = ("gw_area", "area_capped", "bulk_yield", "bandwidth", "flow_factor_range", "inlet")
+# attributes a variable carries besides units and long_name
+EXTRA_ATTRS = {
+    "validity_flags": {"flag_masks": [1 << bit for bit in range(len(VALIDITY_FLAGS))],
+                       "flag_meanings": " ".join(VALIDITY_FLAGS)},
 }
 
 FIELDS = {
@@ -51,7 +61,7 @@ FIELDS = {
     "film_content": ("1", "film content theta: fraction of the expected gap filled (effects.cavitation: jfo only)"),
 }
 
-INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes", "valid")
+INTEGER_SCALARS = ("converged", "iterations", "open_circuit", "clamped_nodes", "valid", "validity_flags")
 
 
 def history_line(previous: str | None = None) -> str:

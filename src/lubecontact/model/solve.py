@@ -22,7 +22,7 @@ from lubecontact.model.coupling import WarmStart, coupled_solve
 from lubecontact.model.model import Model
 from lubecontact.model.outputs import point_outputs
 from lubecontact.model.prepare import prepare
-from lubecontact.model.validity import assess
+from lubecontact.model.validity import assess, flag_bits
 from lubecontact.numerics.blas_threads import one_blas_thread
 
 
@@ -64,6 +64,7 @@ def solve_case(scene, fields: bool = False, initial: WarmStart | None = None):
         "solve_time": time.perf_counter() - start,
         "speed": scene.operating.speed,
         "valid": int(not validity),
+        "validity_flags": flag_bits(validity),
     }
     field_data = None
     if fields:

@@ -33,6 +33,7 @@ import math
 
 import numpy as np
 
+from lubecontact.io.case_schema import VALIDITY_FLAGS
 from lubecontact.physics.inlet import inlet_film_fraction
 
 GW_MAX_AREA_FRACTION = 0.1
@@ -58,6 +59,14 @@ def bandwidth_note(roughness) -> str | None:
             f"eta R sigma = {roughness.asperity_density * roughness.asperity_radius * roughness.sigma:.3g} implies "
             f"bandwidth alpha = {alpha:.3g} < {MIN_BANDWIDTH:g} (eta R sigma = 0.020358 sqrt(alpha)): no Gaussian "
             f"surface has these summits; GW statistics are outside their ground")
+
+
+def flag_bits(flags) -> int:
+    """The ``validity_flags`` bit field of the flags raised (io/case_schema.VALIDITY_FLAGS)."""
+    unknown = set(flags) - set(VALIDITY_FLAGS)
+    if unknown:
+        raise ValueError(f"validity flags {sorted(unknown)} have no bit in io/case_schema.VALIDITY_FLAGS")
+    return sum(1 << VALIDITY_FLAGS.index(flag) for flag in flags)
 
 
 def scene_warnings(scene) -> list[str]:

@@ -5,8 +5,10 @@ swept dimensions and ``speed``. One curve is drawn per combination of the swept
 dimensions, in one panel per x quantity: the sliding speed U (Figs. 3-11), the Stribeck
 normalisation U/F (Figs. 8-9) or the Hersey number mu U/F (Figs. 10-11).
 
-Nothing is hidden: a point outside a sub-model's range (``valid`` = 0, see
-:mod:`lubecontact.model.validity`) is drawn hollow; a point that did not converge (``converged`` = 0) gets a red cross; a
+Nothing is hidden: a point outside a sub-model's range gets a hollow marker for each kind of
+breach its case raised (``validity_flags``, see :mod:`lubecontact.model.validity`; the legend
+says each in words; data without the flags: a hollow circle where ``valid`` = 0); a point
+that did not converge (``converged`` = 0) gets a red cross; a
 point whose value is +inf (``contact_resistance`` of an open circuit) is drawn as a
 triangle on the top edge of the panel, where the value leaves the axis. A NaN is an error.
 
@@ -25,6 +27,15 @@ from matplotlib import colormaps
 from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
+
+from lubecontact.io.case_schema import VALIDITY_FLAGS
+from lubecontact.model.validity import (
+    GW_MAX_AREA_FRACTION,
+    INLET_FILM_DEFICIT,
+    LINE_YIELD_ONSET,
+    MIN_BANDWIDTH,
+    MIN_FLOW_FACTOR_FILM,
+)
 
 # x quantities: name -> (long_name, CF units, function of the figure Dataset)
 X_QUANTITIES = {
@@ -62,6 +73,17 @@ DISPLAY_UNITS = {
 NOT_CONVERGED_STYLE = {"marker": "x", "color": "tab:red", "markersize": 8, "markeredgewidth": 1.6, "linestyle": "none"}
 OPEN_STYLE = {"marker": "^", "markersize": 7, "linestyle": "none", "clip_on": False}
 OUTSIDE_STYLE = {"marker": "o", "markersize": 5, "markerfacecolor": "white", "linestyle": "none"}
+# each kind of breach its own hollow marker (the case's validity_flags), with what it means
+FLAG_MARKERS = {"gw_area": "s", "area_capped": "D", "bulk_yield": "P", "bandwidth": "*", "flow_factor_range": "v",
+                "inlet": "<"}
+FLAG_LABELS = {
+    "gw_area": f"A_r/A_n > {GW_MAX_AREA_FRACTION:g}: beyond GW's light contact",
+    "area_capped": "A_r/A_n > 1 at a node: counted as full contact",
+    "bulk_yield": f"pressure > {LINE_YIELD_ONSET:g} S_y: bulk yield (bodies modelled elastic)",
+    "bandwidth": f"bandwidth α < {MIN_BANDWIDTH:g}: no Gaussian surface has these summits",
+    "flow_factor_range": f"h/σ < {MIN_FLOW_FACTOR_FILM:g} under pressure: flow factors extrapolated",
+    "inlet": f"inlet short of the flooded film by ≥ {100 * INLET_FILM_DEFICIT:g} %",
+}
 
 
 def unit_label(units: str) -> str:
@@ -120,6 +142,7 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "", reference: xr.Dataset
     shape = [ds.sizes[d] for d in dims]
     colours = _colours(int(np.prod(shape)))
     marks = {"not converged": False, "open": False, "outside": False}
+    flagged: set[str] = set()
     for ax, x_name in zip(axes, panels):
         x_all = x_quantity(ds, x_name)
         x_all, y_all = xr.broadcast(x_all, y)
@@ -132,7 +155,15 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "", reference: xr.Dataset
             failed = curve["converged"].transpose("speed").values == 0
             label = _label(curve, swept, plot.get("legend")) if dims else None
             ax.plot(xs, np.where(infinite, np.nan, ys), marker="o", markersize=3, color=colours[k], label=label)
-            if "valid" in curve:  # hollow: outside a sub-model's range (the case's validity attribute)
+            if "validity_flags" in curve:  # each kind of breach its own hollow marker
+                bits = curve["validity_flags"].transpose("speed").values
+                for bit, flag in enumerate(VALIDITY_FLAGS):
+                    raised = ((bits >> bit) & 1).astype(bool) & ~infinite
+                    if raised.any():
+                        ax.plot(xs[raised], ys[raised], marker=FLAG_MARKERS[flag], markersize=7, markerfacecolor="none",
+                                markeredgecolor=colours[k], linestyle="none")
+                        flagged.add(flag)
+            elif "valid" in curve:  # data without the flags' kinds: hollow, outside a sub-model's range
                 outside = (curve["valid"].transpose("speed").values == 0) & ~infinite
                 ax.plot(xs[outside], ys[outside], markeredgecolor=colours[k], **OUTSIDE_STYLE)
                 marks["outside"] |= bool(outside.any())
@@ -163,6 +194,11 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "", reference: xr.Dataset
     if marks["outside"]:
         handles.append(Line2D([], [], markeredgecolor="0.3", **OUTSIDE_STYLE))
         labels.append("outside a sub-model's range (case validity)")
+    for flag in VALIDITY_FLAGS:
+        if flag in flagged:
+            handles.append(Line2D([], [], marker=FLAG_MARKERS[flag], markersize=7, markerfacecolor="none",
+                                  markeredgecolor="0.3", linestyle="none"))
+            labels.append(FLAG_LABELS[flag])
     if marks["open"]:
         handles.append(Line2D([], [], color="0.3", **OPEN_STYLE))
         labels.append(f"{y_name.replace('_', ' ')} = \u221e (open circuit), at top edge")
