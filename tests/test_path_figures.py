@@ -85,6 +85,24 @@ def test_speed_limit_map_marks_cells_with_unconverged_solves_and_names_mu_and_si
     assert "μ = 0.1 Pa s, σ = 0.5 µm" in fig.get_suptitle() and f"speeds {min(SPEEDS):g} to {max(SPEEDS):g} m/s" in fig.get_suptitle()
 
 
+def test_speed_limit_map_reads_for_any_lubricant_as_mu_u():
+    """Issue 29 item 10: the steady film depends on mu U alone, so the colour bar's second
+    scale is mu U (Pa m) and the title says how to read the map for another viscosity."""
+    coords = {"force": ("force", [1.0, 10.0], {"units": "N", "long_name": "normal force F"}),
+              "radius": ("radius", [2.5e-3, 1e-2], {"units": "m", "long_name": "cylinder radius R"})}
+    u = np.array(SPEEDS)
+    ds = dataset(np.array([[4 * u**2, 2 * u**2], [np.full(4, 1e-3), u]]), ("force", "radius", "speed"), coords)
+    fig = plotting.render(ds, {"kind": "speed_limit", "y": "contact_resistance", "x": ["speed"],
+                               "map": ["force", "radius"]}, "map")
+    fig.draw_without_rendering()  # a secondary axis takes its limits when drawn
+    bar = fig.axes[1]
+    product = [child for child in bar.get_children() if hasattr(child, "get_ylabel") and "μU" in child.get_ylabel()]
+    assert len(product) == 1
+    low, high = bar.get_ylim()
+    assert product[0].get_ylim() == pytest.approx((0.1 * low, 0.1 * high))  # mu = 0.1 Pa s
+    assert "another lubricant" in fig.get_suptitle()
+
+
 def test_the_paper_models_resistance_axis_says_spots_only():
     """Issue 29 item 12: Figs. 3-11 model the metal spots alone; their axis must not say 'whole path'."""
     ds = dataset([[2e-4, 2e-4, 3e-4, 1e3]], ("sigma", "speed"),

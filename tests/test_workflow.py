@@ -115,7 +115,7 @@ def test_default_grids(fresh):
     # fig10: 4 viscosities, each with the baseline; fig08: 5 forces with the baseline;
     # fig05/07/09/11 reuse those grids: 7 + 3 + 3 + 4 + 3 = 20 curves; fig04_alpha: 4 (sigma,
     # R_peak) pairs with the baseline, fig04_measured: 2 surfaces: 25 curves of 26 speeds;
-    # the full path (fig04p-10p) 1 + 3 + 3 + 4 + 3 = 14 curves of 26 speeds; fig12: 16 curves of 10.
+    # the full path (fig04p-10p) 1 + 3 + 3 + 4 + 3 = 14 curves of 26 speeds; fig12: 16 curves of 16.
     # transient: 5 stop curves + 7 viscosities x 3 forces (line contacts: none of them a stop
     # curve) + 1 vibration
     transient = {"transient_case": 5 + 21 + 1, "transient_figure": 3}
@@ -123,7 +123,7 @@ def test_default_grids(fresh):
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
     cases = {c for g in grid.expand_all(specs, ROOT).values() for c in g.unique_cases()}
-    assert len(cases) == 25 * 26 + 14 * 26 + 16 * 10
+    assert len(cases) == 25 * 26 + 14 * 26 + 16 * 16
 
 
 @pytest.mark.slow

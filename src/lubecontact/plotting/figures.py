@@ -266,7 +266,9 @@ def highest_closed_speed(ds: xr.Dataset) -> xr.DataArray:
 
 def render_speed_limit(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure:
     """A map of :func:`highest_closed_speed` over the two swept dimensions (``plot['map']``:
-    [x dimension, y dimension]), log colour scale, each cell labelled with its value."""
+    [x dimension, y dimension]), log colour scale, each cell labelled with its value. The
+    colour bar carries a second scale in mu U (Pa m), the group the steady film depends on,
+    and the title says how to read the map for another viscosity."""
     limit = highest_closed_speed(ds)
     x_dim, y_dim = plot.get("map") or [d for d in limit.dims]
     limit = limit.transpose(y_dim, x_dim)
@@ -289,8 +291,14 @@ def render_speed_limit(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure
     units = plot.get("units") or {}
     ax.set_xlabel(f"{ds[x_dim].attrs.get('long_name', x_dim).split(' (')[0]} ({units.get(x_dim, unit_label(ds[x_dim].attrs.get('units', '')))})")
     ax.set_ylabel(f"{ds[y_dim].attrs.get('long_name', y_dim).split(' (')[0]} ({units.get(y_dim, unit_label(ds[y_dim].attrs.get('units', '')))})")
+    scene = yaml.safe_load(str(ds["scene"].values.flat[0]))
+    viscosity = float(scene["lubricant"]["viscosity"])
     bar = fig.colorbar(mesh, ax=ax)
     bar.set_label(f"highest sliding speed with R < {limit.attrs['open_resistance']:g} Ω (m/s)")
+    # the steady isoviscous film depends on mu U alone (Reynolds, docs/physics.md section 3):
+    # the same map read for any lubricant
+    product = bar.ax.secondary_yaxis("left", functions=(lambda u: u * viscosity, lambda m: m / viscosity))
+    product.set_ylabel("the same as viscosity × speed μU (Pa m)")
     # a cell with a solve that did not converge is marked, not trusted silently
     failed = (ds["converged"].transpose(y_dim, x_dim, "speed").values == 0).any(axis=-1)
     if failed.any():
@@ -298,9 +306,8 @@ def render_speed_limit(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure
         ax.plot(columns + 0.35, rows + 0.3, **NOT_CONVERGED_STYLE)
         ax.legend([Line2D([], [], **NOT_CONVERGED_STYLE)], ["a solve of this cell did not converge"],
                   loc="upper center", bbox_to_anchor=(0.5, -0.14), fontsize="small", frameon=False)
-    scene = yaml.safe_load(str(ds["scene"].values.flat[0]))
-    what = (f"μ = {scene['lubricant']['viscosity']:g} Pa s, σ = {scene['roughness']['sigma'] * 1e6:g} µm, "
-            f"speeds {speeds.min():g} to {speeds.max():g} m/s")
+    what = (f"μ = {viscosity:g} Pa s, σ = {scene['roughness']['sigma'] * 1e6:g} µm, "
+            f"speeds {speeds.min():g} to {speeds.max():g} m/s; another lubricant μ': U* × μ/μ'")
     fig.suptitle(f"{title}\n{what}" if title else what, fontsize="medium")
     return fig
 
