@@ -7,6 +7,7 @@ from lubecontact.cli.main import main
 from lubecontact.model.validity import bandwidth
 from lubecontact.numerics.mesh import build_mesh
 from lubecontact.physics.inlet import inlet_film_fraction, required_inlet
+from lubecontact.physics.rough_surface import RoughContact
 
 TABLE1 = "config/scenes/table1.yaml"
 LINE = {"mesh.nx": 21, "mesh.ny": 1}
@@ -31,6 +32,39 @@ def test_1000_newton_leaves_gw_and_elasticity_and_caps_the_area():
     assert peak > 1.67 * 14e6  # the flag's own test, redone from the fields
     for flag in ("gw_area", "area_capped", "bulk_yield"):
         assert f"validity {flag}:" in ds.attrs["notes"]
+
+
+def note_percentages(ds, flag) -> list[float]:
+    """The percentages a flag's note quotes, in order."""
+    line = next(line for line in ds.attrs["notes"].split("; ") if line.startswith(f"validity {flag}:"))
+    return [float(word) for word, after in zip(line.split(), line.split()[1:]) if after == "%"]
+
+
+def test_each_breach_says_what_rests_on_the_nodes_beyond_its_bound():
+    """Issue 29 item 9: a flag says how much of the load (and of the conductance) sits where
+    the bound is passed, recomputed here from the written fields: the asperity load where
+    A_r/A_n > 0.1, the load where the nominal pressure passes 1.67 S_y, the fluid load where
+    h/sigma < 0.5. Table 1 at 1 mm/s (line contact) raises all three."""
+    ds = solve(**{"operating.speed": 1e-3})
+    scene = lc.load_scene(TABLE1, {**LINE, "operating.speed": 1e-3})
+    area = build_mesh(scene).nodal_area
+    contact = RoughContact.from_scene(scene)
+    film = ds.film_thickness.values
+    fraction = contact.area_fraction(film)
+    pc, pf = ds.contact_pressure.values, ds.fluid_pressure.values
+    load, conductance = note_percentages(ds, "gw_area")
+    beyond = fraction > 0.1
+    assert load == pytest.approx(100 * (pc * area)[beyond].sum() / (pc * area).sum(), rel=2e-3)
+    g = contact.conductance(film) * area
+    assert conductance == pytest.approx(100 * g[beyond].sum() / g.sum(), rel=2e-3)
+    assert 0 < load < 100 and 0 < conductance < 100
+    (yielding,) = note_percentages(ds, "bulk_yield")
+    nominal = pc + pf
+    assert yielding == pytest.approx(100 * (nominal * area)[nominal > 1.67 * 14e6].sum() / (nominal * area).sum(), rel=2e-3)
+    (thin,) = note_percentages(ds, "flow_factor_range")
+    wet_thin = (pf > 0) & (film < 0.5 * 0.5e-6)
+    assert thin == pytest.approx(100 * (pf * area)[wet_thin].sum() / (pf * area).sum(), rel=2e-3)
+    assert "percolation" in ds.attrs["notes"] and "extrapolated" not in ds.attrs["notes"]
 
 
 def test_bandwidth_at_sigma_0_02_um(capsys, tmp_path):

@@ -74,9 +74,28 @@ def scene_warnings(scene) -> list[str]:
     return [note for note in (bandwidth_note(scene.roughness),) if note]
 
 
+def share(weight: np.ndarray, where: np.ndarray) -> float:
+    """Fraction of sum(weight) at the nodes ``where`` (0 when the total is 0)."""
+    total = float(np.sum(weight))
+    return float(np.sum(weight[where])) / total if total > 0.0 else 0.0
+
+
+def conductance_share(log_conductance: np.ndarray, nodal_area: np.ndarray, where: np.ndarray) -> float:
+    """Fraction of the spots' conductance sum(g dA) at the nodes ``where``, from log g (the
+    nodes conduct in parallel, docs/physics.md section 8; g itself may underflow)."""
+    log_weight = log_conductance + np.log(nodal_area)
+    if not np.isfinite(log_weight).any():
+        return 0.0
+    return share(np.exp(log_weight - np.max(log_weight)), where)
+
+
 def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
-    """flag -> note for every ground the solved ``state`` leaves (empty when none)."""
+    """flag -> note for every ground the solved ``state`` leaves (empty when none). Each note
+    says by how much and what rests on the nodes beyond the bound (their share of the load
+    or of the conductance), so a breach at a few edge nodes reads differently from one
+    under the whole contact (docs/DESIGN.md "Validity")."""
     flags = {}
+    area = mesh.nodal_area
     note = bandwidth_note(scene.roughness) if contact is not None else None
     if note:
         flags["bandwidth"] = note
@@ -84,24 +103,35 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
         fraction = contact.area_fraction(state.film)
         peak = float(fraction.max())
         if peak > GW_MAX_AREA_FRACTION:
-            flags["gw_area"] = (f"A_r/A_n up to {peak:.3g} > {GW_MAX_AREA_FRACTION:g}: beyond the light contact "
-                                f"of independent asperities (GW)")
+            beyond = fraction > GW_MAX_AREA_FRACTION
+            flags["gw_area"] = (
+                f"A_r/A_n up to {peak:.3g} > {GW_MAX_AREA_FRACTION:g}: beyond the light contact of independent "
+                f"asperities (GW), and those nodes carry {100 * share(state.contact_pressure * area, beyond):.3g} % of "
+                f"the asperity load and {100 * conductance_share(contact.log_conductance(state.film), area, beyond):.3g} "
+                f"% of the spots' conductance")
         if peak > 1.0:
             flags["area_capped"] = (f"A_r/A_n > 1 at {int((fraction > 1.0).sum())} nodes (up to {peak:.3g}): "
                                     f"counted as full contact in real_contact_area")
     yield_strength = min(scene.cylinder.yield_strength, scene.block.yield_strength)
-    pressure = float(np.max(state.contact_pressure + state.fluid_pressure))
-    if pressure > LINE_YIELD_ONSET * yield_strength:
-        flags["bulk_yield"] = (f"peak nominal pressure {pressure:.3g} Pa > {LINE_YIELD_ONSET:g} S_y = "
-                               f"{LINE_YIELD_ONSET * yield_strength:.3g} Pa: onset of bulk yield, the bodies are "
-                               f"modelled elastic")
+    nominal = state.contact_pressure + state.fluid_pressure
+    pressure = float(np.max(nominal))
+    onset = LINE_YIELD_ONSET * yield_strength
+    if pressure > onset:
+        flags["bulk_yield"] = (
+            f"peak nominal pressure {pressure:.3g} Pa = {pressure / onset:.3g} x the onset of bulk yield "
+            f"{LINE_YIELD_ONSET:g} S_y = {onset:.3g} Pa, over nodes carrying {100 * share(nominal * area, nominal > onset):.3g} "
+            f"% of the load: the bodies are modelled elastic")
     if hydrodynamic and contact is not None and scene.effects.flow_factors:
         wet = state.fluid_pressure > 0.0
         if wet.any():
             lowest = float(np.min(state.film[wet])) / contact.sigma
             if lowest < MIN_FLOW_FACTOR_FILM:
-                flags["flow_factor_range"] = (f"h/sigma down to {lowest:.3g} < {MIN_FLOW_FACTOR_FILM:g} where the "
-                                              f"fluid is pressurised: Patir-Cheng flow factors are extrapolated")
+                thin = wet & (state.film < MIN_FLOW_FACTOR_FILM * contact.sigma)
+                flags["flow_factor_range"] = (
+                    f"h/sigma down to {lowest:.3g} < {MIN_FLOW_FACTOR_FILM:g} where the fluid is pressurised: below "
+                    f"Patir-Cheng's fitted range the pressure flow is the percolation interpolation to zero at "
+                    f"h = 0 (docs/physics.md section 15), and those nodes carry "
+                    f"{100 * share(state.fluid_pressure * area, thin):.3g} % of the fluid load")
     if hydrodynamic:
         gap = state.expected_gap if state.expected_gap is not None else state.film
         thinnest = float(np.min(gap))
