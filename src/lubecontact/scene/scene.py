@@ -426,6 +426,18 @@ class MeshSettings(_Section):
 class SolverSettings(_Section):
     tolerance: float = _field(1.0e-6, _Real("1", low=0.0, high=0.1), "relative force-balance tolerance")
     max_iterations: int = _field(200, _Integer(1), "iteration limit of the force balance")
+    method: str = _field(
+        "nested", _Choice(("nested", "newton")),
+        "nested: force balance inside a deformation fixed point (model/coupling.py); newton: one semismooth "
+        "Newton on the whole residual (model/monolithic_newton.py, steady solves)",
+    )
+
+    def to_dict(self):
+        """The default method is left out, so scenes written before the key keep their hash."""
+        data = super().to_dict()
+        if self.method == "nested":
+            del data["method"]
+        return data
 
 
 @dataclass(frozen=True)
@@ -802,6 +814,12 @@ def _cross_problems(s: dict) -> list[str]:
                 f"{variance:.3g} m^2 is not positive; allowed: 'mccool' only when roughness.sigma > "
                 f"{math.sqrt(MCCOOL_VARIANCE_CONSTANT) / eta_r:.3g} m, else 'sigma'"
             )
+    solver = s.get("solver")
+    if solver is not None and effects is not None and solver.method == "newton" and effects.cavitation == "jfo":
+        problems.append(
+            "solver.method = 'newton' with effects.cavitation = 'jfo': the one-Newton solver has the Reynolds "
+            "condition and full Sommerfeld so far; allowed: 'nested' with jfo, or cavitation 'reynolds' or 'none'"
+        )
     motion = s.get("motion")
     if motion is not None and motion.kind == "table" and motion.table is None:
         problems.append("motion.kind = 'table': motion.table is missing; allowed: rows [t (s), U (m/s)] or a file")

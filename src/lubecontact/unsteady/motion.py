@@ -110,4 +110,9 @@ def motion_problems(scene) -> list[str]:
             "effects.cavitation = 'jfo': the transient's squeeze term is built on the Reynolds condition so far "
             "(its film-content history is not yet carried); allowed: 'reynolds' or 'none' with a motion"
         )
+    if scene.solver.method == "newton" and scene.motion.kind != "steady":
+        problems.append(
+            "solver.method = 'newton': the one-Newton solver serves steady solves so far (its time stepping is open "
+            "work); allowed: 'nested' with a motion"
+        )
     return problems

@@ -1,0 +1,510 @@
+"""One semismooth Newton for the coupled steady contact (docs/physics.md section 20).
+
+The unknowns are the fluid pressure p at the Reynolds nodes, the deformation delta at every
+node and the cylinder position z; the film is h = h_o + z + delta (Eq. 3). One residual
+holds the whole problem:
+
+    R_p     = phi_FB(p, w(p, h) / A_ii)          cavitation p >= 0 _|_ outflow w >= 0
+    R_delta = delta - K (p + p_c(h))             deformation, Eq. (3)
+    R_z     = h_s (F_fluid + F_contact - F) / F  force balance, Eq. (18)
+
+with w = A(h) p - b(h) the finite-volume outflow of each cell (numerics/reynolds.py), scaled
+by its diagonal to a pressure, phi_FB the Fischer-Burmeister function
+(numerics/complementarity.py) and h_s the film scale (sigma, or Martin's film). Every law in
+it is at least semismooth, so Newton's method applies to the whole residual at once: no
+active set inside a force balance inside a deformation fixed point.
+
+Each Newton step linearises all three blocks: the Reynolds block J_pp = D_a + D_b A / A_ii
+(sparse, one LU factorisation), its film slope J_ph (numerics/reynolds_jacobian.py), the
+contact stiffness and the influence operator K (an FFT). The pressure update is eliminated
+with the LU factors and the remaining (delta, z) system, the identity minus K times the
+fluid and contact stiffness, is solved by GMRES, each product one back-substitution and one
+FFT (without deformation it is one scalar equation). A backtracking line search on the
+scaled residual norm (Armijo) globalises the step; with smooth surfaces the step is also
+kept short of closing the film (h > 0 at every node: the smooth film has no contact law).
+
+A cold start solves the same problem on the mesh with every other node first (down to
+NESTED_COARSEST nodes a side) and starts from its interpolated solution; where Newton
+still fails from the start, the load is approached by continuation from a fraction of it.
+
+Stopping tests, in physical units and all met together (``solver.tolerance`` = tol):
+|F_fluid + F_contact - F| <= tol F, max |R_delta| <= tol max(range of delta, h_s), and
+max |R_p| <= tol p_s with p_s the peak pressure.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import LinearOperator, gmres, splu
+
+from lubecontact.model.coupling import Diagnostics, WarmStart
+from lubecontact.model.auto_effects import operating_point
+from lubecontact.model.evaluation import film_scale
+from lubecontact.model.fluid_film import fluid_faces, fluid_film
+from lubecontact.model.model import Model, SolveError, State
+from lubecontact.numerics.complementarity import fischer_burmeister
+from lubecontact.numerics.reynolds import ReynoldsSolution, interior_nodes, reynolds_system, solve_reynolds
+from lubecontact.numerics.reynolds_jacobian import outflow_film_jacobian
+from lubecontact.numerics.transfer import interpolate_field
+from lubecontact.physics.film_estimates import hertz_half_width
+
+# Armijo's sufficient decrease and the shortest step tried (Kelley 1995, "Iterative Methods
+# for Linear and Nonlinear Equations", SIAM, section 8.1: 1e-4 and halving).
+SUFFICIENT_DECREASE = 1e-4
+SMALLEST_STEP = 2.0**-12
+# With smooth surfaces a step may close the film by at most this fraction at any node
+# (fraction to the boundary, as interior-point methods keep their iterates feasible).
+FILM_STEP_FRACTION = 0.9
+# Relative residual of the GMRES solve of the (delta, z) block: inexact Newton steps
+# (Dembo, Eisenstat & Steihaug 1982) with the forcing term min(0.1, this x the residual's
+# decrease) are enough for fast local convergence; the outer test judges the result.
+GMRES_FORCING = 1e-3
+GMRES_RESTART = 30
+GMRES_CYCLES = 10
+# Smoothing of the Fischer-Burmeister function relative to the scaled residual: nodes in a
+# sealed pocket have p = 0 and outflow 0 together, where phi is not differentiable and the
+# generalised Newton step can fail to descend (seen on Table 1 at 1 mm/s: 506 such nodes).
+SMOOTHING_FACTOR = 1e-3
+# The smoothing is lowered (one more evaluation) once the residual allows a tenth of it.
+SMOOTHING_UPDATE = 0.1
+# Up to this many nodes (line contacts) the reduced Newton system is solved densely: its
+# matrix costs n back-substitutions and n FFTs, and its LU (n^3/3 flops) is ~0.1 s at 1500.
+DENSE_NODES = 1500
+# A Newton iteration whose squared residual norm has not halved in STALL_ITERATIONS
+# iterations has stalled (far from its quadratic convergence): it stops there, cheaply, and
+# says so, instead of running to solver.max_iterations.
+STALL_ITERATIONS = 8
+STALL_FACTOR = 0.5
+# Nested start: the coarsest mesh solved first (nodes a side); only with asperity contact,
+# as the nested solver (model/coupling.py): a coarse mesh may not resolve a smooth film.
+NESTED_COARSEST = 26
+# Load continuation from a cold start that fails: the first fraction of the load, then
+# doubled back to the full load.
+CONTINUATION_HALVINGS = 6
+
+
+@dataclass
+class Iterate:
+    """A point of the Newton iteration: fluid pressure (Pa, (ny, nx), zero off the Reynolds
+    unknowns), deformation (m, (ny, nx)) and cylinder position (m)."""
+
+    pressure: np.ndarray
+    delta: np.ndarray
+    z: float
+
+
+@dataclass
+class Linearisation:
+    """The residual at an iterate and what its Newton step needs."""
+
+    state: State
+    r_p: np.ndarray  # FB residual at the Reynolds unknowns, Pa
+    r_delta: np.ndarray | None  # deformation residual, m (ny, nx); None for rigid bodies
+    r_z: float  # scaled force residual, m
+    unknown: np.ndarray | None  # (ny, nx) bool: the Reynolds unknowns
+    j_pp: sp.csc_matrix | None
+    j_ph: sp.csr_matrix | None
+    contact_slope: np.ndarray  # dp_c/dh, Pa/m (zeros without asperity contact)
+    pressure_scale: float  # p_s, Pa
+    film_scale: float  # h_s, m
+    smoothing: float = 0.0  # the Fischer-Burmeister smoothing mu of r_p, Pa
+
+    def merit(self) -> float:
+        """Half the squared norm of the scaled residual (p by p_s, films by h_s)."""
+        total = float(np.sum((self.r_p / self.pressure_scale) ** 2)) + (self.r_z / self.film_scale) ** 2
+        if self.r_delta is not None:
+            total += float(np.sum((self.r_delta / self.film_scale) ** 2))
+        return 0.5 * total
+
+
+def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisation:
+    """The residual of the module docstring at ``it`` and its Jacobian blocks, the
+    Fischer-Burmeister function smoothed by ``smoothing`` (Pa; complementarity.py)."""
+    mesh, scene = model.mesh, model.scene
+    force = scene.operating.force
+    film = model.undeformed_gap + it.z + it.delta
+    if model.contact is None and model.hydrodynamic and not np.all(film[interior_nodes(mesh.shape, mesh.line)] > 0.0):
+        raise ValueError("smooth surfaces need a positive film at every node")
+    contact_pressure = np.zeros(mesh.shape)
+    contact_slope = np.zeros(mesh.shape)
+    if model.contact is not None:
+        contact_pressure, contact_slope = model.contact.pressure_and_slope(film)
+    pressure = np.zeros(mesh.shape)
+    r_p = exact = np.zeros(0)
+    unknown = j_pp = j_ph = reynolds = h_t = k = faces = face_slopes = None
+    if model.hydrodynamic:
+        h_t, k = fluid_film(model, film)
+        faces, face_slopes = fluid_faces(model, film)
+        system = reynolds_system(mesh, h_t, k, scene.operating.speed, faces)
+        unknown = system.unknown
+        pressure[unknown] = it.pressure[unknown]
+        p = pressure[unknown]
+        scale = system.matrix.diagonal()
+        w = system.matrix @ p - system.rhs
+        if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
+            r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
+            exact = r_p
+        else:
+            r_p, d_a, d_b = fischer_burmeister(p, w / scale, smoothing)
+            exact = fischer_burmeister(p, w / scale)[0] if smoothing > 0.0 else r_p
+        j_pp = (sp.diags(d_a) + sp.diags(d_b / scale) @ system.matrix).tocsc()
+        gap_slope = coefficient_slope = None
+        if face_slopes is None:
+            _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)
+        j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, gap_slope,
+                                           coefficient_slope)
+        j_ph = sp.diags(d_b / scale) @ j_wh - sp.diags(d_b * w / scale**2) @ j_sh  # d(w / A_ii)/dh
+        # cavitated: the outflow, not the pressure, is the positive partner (a sealed node with
+        # p = 0 and no outflow is full of fluid)
+        cavitated = np.zeros(mesh.shape, dtype=bool)
+        if scene.effects.cavitation != "none":
+            cavitated[unknown] = w / scale > p
+        reynolds = ReynoldsSolution(pressure=pressure, cavitated=cavitated, iterations=0, residual=0.0, converged=True)
+    area = mesh.nodal_area
+    total = pressure + contact_pressure
+    state = State(
+        z=it.z, delta=it.delta, film=film, contact_pressure=contact_pressure, fluid_pressure=pressure,
+        expected_gap=h_t, reynolds=reynolds, contact_force=float(np.sum(contact_pressure * area)),
+        fluid_force=float(np.sum(pressure * area)), contact_slope=contact_slope if model.contact is not None else None,
+        flow_coefficient=k, faces=faces, face_slopes=face_slopes,
+    )
+    scale_h = film_scale(model)
+    r_delta = None if model.deformation is None else it.delta - model.deformation(total)
+    pressure_scale = max(float(np.max(total)), force / float(np.sum(area)))
+    if reynolds is not None:
+        reynolds.residual = float(np.max(np.abs(exact), initial=0.0)) / pressure_scale
+    return Linearisation(state, r_p, r_delta, scale_h * (state.total_force - force) / force, unknown, j_pp, j_ph,
+                         contact_slope, pressure_scale, scale_h, smoothing)
+
+
+def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None):
+    """(d pressure (ny, nx), d delta (ny, nx), d z, dF/dz at fixed delta) of the Newton step:
+    the pressure eliminated with the LU factors of J_pp, (delta, z) by GMRES (module
+    docstring); ``influence``: K as a dense matrix (dense_influence) for the dense reduced
+    solve of small meshes, else GMRES. Raises RuntimeError where a linear solve fails.""" 
+    mesh = model.mesh
+    area = mesh.nodal_area
+    force = model.scene.operating.force
+    weight = lin.film_scale / force
+    lu = splu(lin.j_pp) if lin.j_pp is not None and lin.j_pp.shape[0] else None
+
+    def pressure_response(dh):
+        """Change of the fluid pressure (ny, nx) for a film change dh (ny, nx), R_p held."""
+        out = np.zeros(mesh.shape)
+        if lu is not None:
+            out[lin.unknown] = lu.solve(-(lin.j_ph @ dh.ravel()))
+        return out
+
+    base = np.zeros(mesh.shape)  # pressure step at fixed film
+    if lu is not None:
+        base[lin.unknown] = lu.solve(-lin.r_p)
+    ones = np.ones(mesh.shape)
+    rigid = pressure_response(ones) + lin.contact_slope  # total pressure per unit dz
+    stiffness = float(np.sum(rigid * area))  # dF/dz at fixed delta, N/m (< 0)
+    if model.deformation is None:
+        dz = (-lin.r_z - weight * float(np.sum(base * area))) / (weight * stiffness)
+        return base + dz * pressure_response(ones), None, dz, stiffness
+
+    n = mesh.nx * mesh.ny
+    rhs = np.append((-lin.r_delta + model.deformation(base)).ravel(), -lin.r_z - weight * float(np.sum(base * area)))
+    if influence is not None:
+        y = dense_reduced_solve(model, lin, lu, weight, rhs, influence)
+    else:
+        y = krylov_reduced_solve(model, lin, pressure_response, weight, rhs, forcing)
+    d_delta, dz = y[:n].reshape(mesh.shape), float(y[n])
+    return base + pressure_response(d_delta + dz), d_delta, dz, stiffness
+
+
+def dense_influence(model: Model) -> np.ndarray | None:
+    """K as a dense (n, n) matrix from the influence operator's columns, for a deforming
+    model of at most DENSE_NODES nodes (line contacts), else None."""
+    mesh = model.mesh
+    n = mesh.nx * mesh.ny
+    if model.deformation is None or n > DENSE_NODES:
+        return None
+    return np.column_stack([model.deformation(column.reshape(mesh.shape)).ravel() for column in np.eye(n)])
+
+
+def dense_reduced_solve(model: Model, lin: Linearisation, lu, weight: float, rhs: np.ndarray,
+                        influence: np.ndarray) -> np.ndarray:
+    """(d delta, dz) of the reduced system by a dense LU: T, the total pressure per unit film
+    change, from the sparse factors of J_pp (one solve with many right-hand sides), and K
+    (``influence``, dense_influence)."""
+    mesh = model.mesh
+    n = mesh.nx * mesh.ny
+    response = np.diag(lin.contact_slope.ravel())
+    if lu is not None:
+        fluid = np.zeros((n, n))
+        fluid[lin.unknown.ravel()] = lu.solve(-lin.j_ph.toarray())
+        response = response + fluid
+    coupled = influence @ response
+    area = mesh.nodal_area.ravel()
+    matrix = np.zeros((n + 1, n + 1))
+    matrix[:n, :n] = np.eye(n) - coupled
+    matrix[:n, n] = -coupled.sum(axis=1)
+    matrix[n, :n] = weight * (area @ response)
+    matrix[n, n] = weight * float(area @ response.sum(axis=1))
+    y = np.linalg.solve(matrix, rhs)
+    if not np.all(np.isfinite(y)):
+        raise RuntimeError("the Newton step's dense solve gave non-finite values")
+    return y
+
+
+def krylov_reduced_solve(model: Model, lin: Linearisation, pressure_response, weight: float, rhs: np.ndarray,
+                         forcing: float) -> np.ndarray:
+    """(d delta, dz) of the reduced system by GMRES, each product one back-substitution with
+    the factors of J_pp and one FFT. Raises RuntimeError when GMRES does not reach its
+    tolerance (its direction then need not lower the residual)."""
+    mesh = model.mesh
+    n = mesh.nx * mesh.ny
+    area = mesh.nodal_area
+
+    def matvec(y):
+        d_delta, dz = y[:n].reshape(mesh.shape), y[n]
+        dp = pressure_response(d_delta + dz) + lin.contact_slope * (d_delta + dz)
+        return np.append((d_delta - model.deformation(dp)).ravel(), weight * float(np.sum(dp * area)))
+
+    operator = LinearOperator((n + 1, n + 1), matvec=matvec, dtype=float)
+    y, info = gmres(operator, rhs, rtol=forcing, atol=0.0, restart=GMRES_RESTART, maxiter=GMRES_CYCLES)
+    if info != 0 or not np.all(np.isfinite(y)):
+        raise RuntimeError(f"GMRES of the Newton step did not reach its tolerance {forcing:.2g} (info {info})")
+    return y
+
+
+def longest_film_step(model: Model, lin: Linearisation, d_delta, dz) -> float:
+    """The largest step fraction (<= 1) that keeps a smooth film positive: no node's film
+    closes by more than FILM_STEP_FRACTION of itself. 1 with asperity contact."""
+    if model.contact is not None or not model.hydrodynamic:
+        return 1.0
+    dh = dz + (0.0 if d_delta is None else d_delta)
+    dh = np.broadcast_to(dh, lin.state.film.shape)
+    closing = dh < 0.0
+    if not closing.any():
+        return 1.0
+    return float(min(1.0, FILM_STEP_FRACTION * np.min(lin.state.film[closing] / -dh[closing])))
+
+
+def converged(model: Model, lin: Linearisation, tolerance: float) -> bool:
+    """The stopping tests of the module docstring."""
+    force_ok = abs(lin.r_z) / lin.film_scale <= tolerance
+    reynolds_ok = lin.state.reynolds is None or lin.state.reynolds.residual <= tolerance
+    deformation_ok = True
+    if lin.r_delta is not None:
+        reach = max(float(np.ptp(lin.state.delta)), lin.film_scale)
+        deformation_ok = float(np.max(np.abs(lin.r_delta))) <= tolerance * reach
+    return force_ok and reynolds_ok and deformation_ok
+
+
+def smoothing_for(lin: Linearisation) -> float:
+    """The Fischer-Burmeister smoothing of the next step, Pa: SMOOTHING_FACTOR times the
+    scaled residual norm times p_s, so it vanishes as the iteration converges (a smoothing
+    Newton method, Chen, Qi & Sun 1998, Math. Comp. 67:519)."""
+    return SMOOTHING_FACTOR * min(1.0, np.sqrt(2.0 * lin.merit())) * lin.pressure_scale
+
+
+def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
+    """Newton with backtracking from ``start``: (linearisation at the last iterate,
+    iterations, dF/dz, failure message or "")."""
+    it = start
+    try:
+        lin = linearise(model, it)
+        lin = linearise(model, it, smoothing_for(lin))
+    except ValueError as err:
+        return None, 0, None, f"the start is outside the model: {err}"
+    stiffness = None
+    forcing = 0.1
+    influence = dense_influence(model)
+    history = [lin.merit()]
+    for iteration in range(1, max_iterations + 1):
+        if converged(model, lin, tolerance):
+            return lin, iteration - 1, stiffness, ""
+        if len(history) > STALL_ITERATIONS and history[-1] > STALL_FACTOR * history[-1 - STALL_ITERATIONS]:
+            return lin, iteration, stiffness, (
+                f"Newton stalled: the scaled residual norm fell from {np.sqrt(2 * history[-1 - STALL_ITERATIONS]):.3g} "
+                f"only to {np.sqrt(2 * history[-1]):.3g} in {STALL_ITERATIONS} iterations")
+        try:
+            d_p, d_delta, dz, stiffness = newton_direction(model, lin, forcing, influence)
+        except RuntimeError as err:
+            return lin, iteration, stiffness, f"Newton step {iteration}: {err}"
+        step = longest_film_step(model, lin, d_delta, dz)
+        merit = lin.merit()
+        while True:
+            trial = Iterate(it.pressure + step * d_p, it.delta if d_delta is None else it.delta + step * d_delta,
+                            it.z + step * dz)
+            try:
+                candidate = linearise(model, trial, lin.smoothing)
+                if candidate.merit() <= (1.0 - 2.0 * SUFFICIENT_DECREASE * step) * merit:
+                    break
+            except ValueError:
+                pass
+            step *= 0.5
+            if step < SMALLEST_STEP:
+                return lin, iteration, stiffness, (
+                    f"Newton step {iteration}: no step of the Newton direction down to {SMALLEST_STEP:g} of it lowers "
+                    f"the residual (scaled residual norm {np.sqrt(2 * merit):.3g})")
+        it, lin = trial, candidate
+        if smoothing_for(candidate) < SMOOTHING_UPDATE * candidate.smoothing:
+            lin = linearise(model, it, smoothing_for(candidate))
+        forcing = min(0.1, GMRES_FORCING + np.sqrt(lin.merit() / max(merit, 1e-300)))
+        history.append(lin.merit())
+    if converged(model, lin, tolerance):
+        return lin, max_iterations, stiffness, ""
+    return lin, max_iterations, stiffness, f"{max_iterations} Newton iterations without meeting the tolerances"
+
+
+def dry_position(model: Model, delta: np.ndarray) -> float:
+    """z at which the asperity contact alone carries the force at deformation ``delta``
+    (bisection on the monotone contact force; docs/physics.md section 2)."""
+    force, area = model.scene.operating.force, model.mesh.nodal_area
+    sigma = model.contact.sigma
+    gap = model.undeformed_gap + delta
+
+    def carried(z):
+        return float(np.sum(model.contact.pressure(gap + z) * area))
+
+    low, high = -sigma, sigma
+    while carried(low) < force:
+        low -= 2.0 * (high - low)
+    while carried(high) > force:
+        high += 2.0 * (high - low)
+    for _ in range(200):
+        middle = 0.5 * (low + high)
+        if middle in (low, high):
+            break
+        low, high = (middle, high) if carried(middle) > force else (low, middle)
+    return 0.5 * (low + high)
+
+
+def hertz_pressure(model: Model) -> np.ndarray:
+    """Hertz's line-contact pressure p0 sqrt(1 - x^2/b^2), p0 = 2 w'/(pi b), on the mesh
+    (Pa; Johnson 1985, eq. 4.44; docs/physics.md section 6)."""
+    scene, mesh = model.scene, model.mesh
+    half_width = hertz_half_width(scene)
+    peak = 2.0 * scene.operating.force / scene.geometry.length / (np.pi * half_width)
+    profile = peak * np.sqrt(np.maximum(1.0 - (mesh.x / half_width) ** 2, 0.0))
+    return np.broadcast_to(profile, mesh.shape).copy()
+
+
+def cold_start(model: Model) -> Iterate:
+    """A start from the physics: rough surfaces at the asperities' dry balance, deformed by
+    their own pressure; smooth ones deformed by Hertz's pressure, the cylinder at the
+    isoviscous-elastic (or rigid) film estimate (docs/physics.md sections 4-6); then the
+    Reynolds pressure of that film (numerics/reynolds.solve_reynolds)."""
+    mesh, scene = model.mesh, model.scene
+    delta = np.zeros(mesh.shape)
+    if model.contact is not None:
+        z = dry_position(model, delta)
+        if model.deformation is not None:
+            delta = model.deformation(model.contact.pressure(model.undeformed_gap + z))
+            z = dry_position(model, delta)
+    else:
+        estimate = operating_point(scene)
+        film = estimate.film
+        if model.deformation is not None:
+            delta = model.deformation(hertz_pressure(model))
+            film = estimate.elastic_film
+        z = film - float(np.min(model.undeformed_gap + delta))
+    pressure = np.zeros(mesh.shape)
+    if model.hydrodynamic:
+        h = model.undeformed_gap + z + delta
+        h_t, k = fluid_film(model, h)
+        faces, _ = fluid_faces(model, h)
+        pressure = solve_reynolds(mesh, h_t, k, scene.operating.speed, faces=faces,
+                                  cavitation=scene.effects.cavitation != "none").pressure
+    return Iterate(pressure, delta, z)
+
+
+def transferred(coarse: Model, fine: Model, it: Iterate) -> Iterate:
+    """A coarse-mesh iterate interpolated to the fine mesh (bilinear; pressure kept >= 0)."""
+    pressure = np.maximum(interpolate_field(it.pressure, coarse.mesh, fine.mesh), 0.0)
+    return Iterate(pressure, interpolate_field(it.delta, coarse.mesh, fine.mesh), it.z)
+
+
+def warm_iterate(model: Model, initial: WarmStart) -> Iterate | None:
+    """The iterate of a WarmStart on this mesh (a sweep's previous point), else None."""
+    shape = model.mesh.shape
+    if initial is None or initial.z is None:
+        return None
+    delta = np.zeros(shape)
+    if initial.delta is not None and np.size(initial.delta) == delta.size and model.deformation is not None:
+        delta = np.asarray(initial.delta, dtype=float).reshape(shape)
+    pressure = np.zeros(shape)
+    if initial.pressure is not None and np.shape(initial.pressure) == shape:
+        pressure = np.maximum(np.asarray(initial.pressure, dtype=float), 0.0)
+    return Iterate(pressure, delta, float(initial.z))
+
+
+def at_force(model: Model, force: float) -> Model:
+    """The same model under another applied force."""
+    scene = model.scene
+    return dataclasses.replace(model, scene=dataclasses.replace(
+        scene, operating=dataclasses.replace(scene.operating, force=float(force))))
+
+
+def solve_level(model: Model, start: Iterate, tolerance: float):
+    """Newton from ``start``, then, where it fails from a cold start, load continuation:
+    (linearisation, iterations, stiffness, failure)."""
+    limit = model.scene.solver.max_iterations
+    result = newton(model, start, tolerance, limit)
+    if not result[3]:
+        return result
+    force = model.scene.operating.force
+    for halvings in range(1, CONTINUATION_HALVINGS + 1):
+        fraction = 2.0**-halvings
+        lighter = at_force(model, force * fraction)
+        lin, iterations, stiffness, failure = newton(lighter, cold_start(lighter), tolerance, limit)
+        if failure:
+            continue
+        total = iterations
+        while fraction < 1.0 and not failure:
+            fraction = min(1.0, 2.0 * fraction)
+            step_model = model if fraction == 1.0 else at_force(model, force * fraction)
+            it = Iterate(lin.state.fluid_pressure, lin.state.delta, lin.state.z)
+            lin, iterations, stiffness, failure = newton(step_model, it, tolerance, limit)
+            total += iterations
+        if not failure:
+            return lin, total, stiffness, ""
+    return result
+
+
+def level_solution(model: Model, initial: WarmStart | None, tolerance: float):
+    """(linearisation, iterations, stiffness, failure) on this mesh, started from a warm
+    start on it, else from the solution on the coarser mesh (nested), else cold."""
+    start = warm_iterate(model, initial)
+    if start is None or start.delta.shape != model.mesh.shape:
+        coarse = model.coarsened(NESTED_COARSEST) if model.contact is not None else None
+        start = None
+        if coarse is not None:
+            lin, _, _, failure = level_solution(coarse, None, tolerance)
+            if lin is not None and not failure:
+                state = lin.state
+                start = transferred(coarse, model, Iterate(state.fluid_pressure, state.delta, state.z))
+        if start is None:
+            start = cold_start(model)
+    return solve_level(model, start, tolerance)
+
+
+def monolithic_solve(model: Model, initial: WarmStart | None = None,
+                     tolerance: float | None = None) -> tuple[State, Diagnostics]:
+    """Solve the coupled steady contact by one semismooth Newton (module docstring); the
+    same (State, Diagnostics) as model/coupling.coupled_solve. A failure is reported, never
+    silent: ``converged`` False with the message, and the last state evaluated."""
+    scene = model.scene
+    tol = scene.solver.tolerance if tolerance is None else tolerance
+    lin, iterations, stiffness, failure = level_solution(model, initial, tol)
+    if lin is None:
+        raise SolveError(failure)
+    state = lin.state
+    return state, Diagnostics(
+        iterations=iterations,
+        deformation_residual=0.0 if lin.r_delta is None else float(np.max(np.abs(lin.r_delta))),
+        force_residual=scene.operating.force - state.total_force,
+        reynolds_residual=0.0 if state.reynolds is None else float(state.reynolds.residual),
+        converged=not failure,
+        stiffness=None if stiffness is None else -stiffness,
+        failure=failure,
+    )

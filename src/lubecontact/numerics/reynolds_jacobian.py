@@ -1,0 +1,76 @@
+"""The slope of the Reynolds residual with respect to the film, as a sparse matrix
+(docs/physics.md section 20).
+
+The finite-volume outflow of cell i (numerics/reynolds.py) is a sum over its faces of
+
+    flux_f = T_f (p_a - p_b) + (U/2) dy h_T,f        (x faces; y faces without Couette)
+
+with T_f = k_f dy/dx (or k_f dx/dy). On a face between nodes a and b both k_f and h_T,f
+depend on the films h_a and h_b: with rough surfaces through the film on the face,
+h_f = (h_a + h_b)/2 (physics/percolation.py), so d/dh_a = d/dh_b = (1/2) d/dh_f; with smooth
+ones as means of the nodal values, so d/dh_a = (1/2) d/dh at node a. Cell a gains +flux_f,
+cell b -flux_f. The matrix J[i, j] = d w_i / d h_j has at most seven entries a row.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from lubecontact.physics.percolation import FaceFilm
+
+
+def face_slope_pairs(face_slopes: FaceFilm | None, gap_slope, coefficient_slope):
+    """((dk/dh_a, dk/dh_b, dh_T/dh_a, dh_T/dh_b) of the x faces, (dk/dh_a, dk/dh_b) of the y
+    faces), each without the factor 1/2 of the module docstring: the face's own slopes
+    (rough surfaces) or the nodal slopes of its two nodes (smooth)."""
+    if face_slopes is not None:
+        return ((face_slopes.coefficient_x, face_slopes.coefficient_x, face_slopes.gap_x, face_slopes.gap_x),
+                (face_slopes.coefficient_y, face_slopes.coefficient_y))
+    return ((coefficient_slope[:, :-1], coefficient_slope[:, 1:], gap_slope[:, :-1], gap_slope[:, 1:]),
+            (coefficient_slope[:-1, :], coefficient_slope[1:, :]))
+
+
+def assembled(mesh, unknown, faces) -> sp.csr_matrix:
+    """The (unknowns, nodes) matrix of per-face contributions ``faces``: each a tuple (node a,
+    node b, d/dh_a, d/dh_b, sign at a, sign at b) adding sign x slope to the rows of a and b."""
+    ny, nx = mesh.shape
+    number = np.full(mesh.shape, -1)
+    number[unknown] = np.arange(int(unknown.sum()))
+    rows, cols, vals = [], [], []
+    for a, b, slope_a, slope_b, sign_a, sign_b in faces:
+        for cell, sign in ((a, sign_a), (b, sign_b)):
+            owner = number.ravel()[cell]
+            keep = owner >= 0
+            for node, slope in ((a, slope_a), (b, slope_b)):
+                rows.append(owner[keep])
+                cols.append(node[keep])
+                vals.append(sign * slope[keep])
+    n = int(unknown.sum())
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, ny * nx))
+
+
+def outflow_film_jacobian(mesh, pressure, unknown, speed, face_slopes: FaceFilm | None = None,
+                          gap_slope=None, coefficient_slope=None) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(d w / d h, d A_ii / d h): (number of unknowns, number of nodes) in m^2/s per m of
+    film and m^3/(Pa s) per m, w the net outflow of each unknown node's cell and A_ii the
+    diagonal of its row (reynolds.reynolds_system, C order), h the film at every node.
+    ``pressure`` (ny, nx) Pa; ``face_slopes`` (rough surfaces: dk/dh_f and dh_T/dh_f on the
+    faces) or the nodal ``gap_slope`` and ``coefficient_slope`` (smooth)."""
+    ny, nx = mesh.shape
+    flat = np.arange(ny * nx).reshape(mesh.shape)
+    gx, gy = mesh.dy / mesh.dx, mesh.dx / mesh.dy
+    couette = 0.5 * speed * mesh.dy
+    (dkx_a, dkx_b, dgx_a, dgx_b), (dky_a, dky_b) = face_slope_pairs(face_slopes, gap_slope, coefficient_slope)
+    drop_x = pressure[:, :-1] - pressure[:, 1:]
+    drop_y = pressure[:-1, :] - pressure[1:, :]
+    x_a, x_b, y_a, y_b = flat[:, :-1], flat[:, 1:], flat[:-1, :], flat[1:, :]
+    outflow = assembled(mesh, unknown, [
+        (x_a, x_b, 0.5 * (dkx_a * gx * drop_x + couette * dgx_a), 0.5 * (dkx_b * gx * drop_x + couette * dgx_b), 1.0, -1.0),
+        (y_a, y_b, 0.5 * dky_a * gy * drop_y, 0.5 * dky_b * gy * drop_y, 1.0, -1.0),
+    ])
+    diagonal = assembled(mesh, unknown, [
+        (x_a, x_b, 0.5 * dkx_a * gx, 0.5 * dkx_b * gx, 1.0, 1.0),
+        (y_a, y_b, 0.5 * dky_a * gy, 0.5 * dky_b * gy, 1.0, 1.0),
+    ])
+    return outflow, diagonal
