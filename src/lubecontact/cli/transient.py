@@ -48,6 +48,34 @@ def explained(ds, scene) -> list[str]:
     return lines
 
 
+def events_summary(ds, scene) -> list[str]:
+    """The discontinuity events above both thresholds in words, and why there are none."""
+    r = ds["contact_resistance"].values
+    shortest = ds["min_event_duration"].item()
+    thresholds = (
+        ("", ds["open_resistance"].item(), "interface.open_resistance"),
+        ("relative_", ds["relative_threshold"].item(),
+         f"{scene.motion.reconnect_factor:g} x rest_resistance, motion.reconnect_factor"),
+    )
+    lines = [f"{'events':>22s} = intervals with contact_resistance above a threshold for at least "
+             f"{shortest:.3g} s (interface.min_event_duration)"]
+    for prefix, threshold, source in thresholds:
+        count = ds[f"{prefix}event_count"].item()
+        head = f"  above {threshold:.4g} ohm ({source}):"
+        if count:
+            longest = ds[f"longest_{prefix}event"].item()
+            still = " (the last still open when the run ended)" if prefix == "" and ds["event_open_at_end"].values[-1] else ""
+            lines.append(f"{head} {count} event(s), open {ds[f'{prefix}event_open_time'].item():.4g} s in total, "
+                         f"longest {longest:.4g} s{still}")
+        elif not math.isfinite(threshold):
+            lines.append(f"{head} none: the threshold is infinite (no metallic contact at rest)")
+        elif r.max() <= threshold:
+            lines.append(f"{head} none: contact_resistance never exceeded it (at most {r.max():.4g} ohm)")
+        else:
+            lines.append(f"{head} none: every interval above it was shorter than {shortest:.3g} s")
+    return lines
+
+
 def run_transient(scene, out) -> int:
     try:
         ds = transient(scene)
@@ -57,10 +85,10 @@ def run_transient(scene, out) -> int:
     try:
         write_case(ds, out)
     except OSError as err:
-        print("\n".join([summary(ds), *explained(ds, scene)]))
+        print("\n".join([summary(ds), *explained(ds, scene), *events_summary(ds, scene)]))
         print(f"lubecontact: could not write {out}: {err.strerror or err}; the result is lost", file=sys.stderr)
         return EXIT_NOT_CONVERGED
-    print("\n".join([summary(ds), *explained(ds, scene)]))
+    print("\n".join([summary(ds), *explained(ds, scene), *events_summary(ds, scene)]))
     print(f"wrote {out}")
     if ds.attrs["interrupted"]:
         print(f"lubecontact: interrupted; the series up to t = {ds['time'].values[-1]:.6g} s is in {out} "

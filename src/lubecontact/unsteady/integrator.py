@@ -93,8 +93,10 @@ def error_fraction(steps: list[float]) -> float:
     return abs(corrector / (corrector - predictor))
 
 
-def _extrapolate(times: list[float], values: list, t: float):
-    """Lagrange polynomial through (times, values) evaluated at t."""
+def lagrange(times: list[float], values: list, t: float):
+    """Lagrange polynomial through (times, values) evaluated at t (values: numbers or arrays).
+    Beyond the last time it is the predictor of a step; between the times it is the
+    integrator's dense output (unsteady/events.py locates resistance crossings on it)."""
     total = 0.0
     for i, (ti, vi) in enumerate(zip(times, values)):
         weight = 1.0
@@ -167,8 +169,8 @@ class TimeIntegrator:
         used = levels[-(order + 1):]
         times = [lv.time for lv in used]
         initial = WarmStart(
-            z=_extrapolate(times, [lv.state.z for lv in used], t_new),
-            delta=_extrapolate(times, [lv.state.delta for lv in used], t_new),
+            z=lagrange(times, [lv.state.z for lv in used], t_new),
+            delta=lagrange(times, [lv.state.delta for lv in used], t_new),
             stiffness=last.diagnostics.stiffness,
         )
         if last.state.reynolds is not None:  # the set follows from the pressure (projected_smoothing)
@@ -181,7 +183,7 @@ class TimeIntegrator:
         self.coupled_solves += 1
         if not diag.converged:
             return None, diag.failure or "coupled solve did not meet its tolerances"
-        predicted = _extrapolate(times, [lv.state.film for lv in used], t_new)
+        predicted = lagrange(times, [lv.state.film for lv in used], t_new)
         fraction = error_fraction([dt] + [lv.time - lv_prev.time for lv, lv_prev in zip(used[::-1], used[::-1][1:])])
         weight = self.tolerance * np.maximum(np.abs(state.film), self.floor)
         error = float(np.sqrt(np.mean((fraction * (state.film - predicted) / weight) ** 2)))

@@ -1,5 +1,6 @@
 """The time series of a transient (docs/DESIGN.md "Time"): the Dataset along ``time``,
-``reconnect_time`` and the oscillation metrics, with CF units on every variable."""
+``reconnect_time``, the oscillation metrics and the discontinuity events (events.py) along
+``event``, with CF units on every variable."""
 
 from __future__ import annotations
 
@@ -43,10 +44,27 @@ SCALARS = {
     "rejected_steps": ("1", "time steps rejected by the error control or a failed solve"),
     "coupled_solves": ("1", "coupled solves (accepted and rejected steps, start and rest state)"),
     "solve_time": ("s", "wall time of the run"),
-    "open_fraction": ("1", "oscillation: fraction of the oscillation time with the contact open"),
+    "open_fraction": ("1", "oscillation: fraction of the oscillation time within events above the open resistance"),
+    "relative_threshold": ("ohm", "relative event threshold: the reconnection factor x the resistance at rest"),
+    "min_event_duration": ("s", "shortest time above a threshold that counts as an event"),
+    "event_count": ("1", "events: contact resistance above the open resistance for at least the minimum duration"),
+    "event_open_time": ("s", "total duration of the events above the open resistance"),
+    "longest_event": ("s", "duration of the longest event above the open resistance (0: none)"),
+    "relative_event_count": ("1", "events: contact resistance above the relative threshold for at least the "
+                                  "minimum duration"),
+    "relative_event_open_time": ("s", "total duration of the events above the relative threshold"),
+    "longest_relative_event": ("s", "duration of the longest event above the relative threshold (0: none)"),
 }
 CYCLE = {"peak_resistance": ("ohm", "oscillation: largest contact resistance in each cycle")}
-INTEGER = ("step_converged", "iterations", "order", "converged", "steps", "rejected_steps", "coupled_solves", "valid")
+# along ``event``: the events above the open resistance (events.py), in time order
+EVENT = {
+    "event_start": ("s", "time the contact resistance rises above the open resistance (0: open from the start)"),
+    "event_duration": ("s", "time the contact resistance stays above the open resistance"),
+    "event_peak_resistance": ("ohm", "largest contact resistance at the time levels within the event"),
+    "event_open_at_end": ("1", "1 if the event is still open when the run ends (its duration a lower bound)"),
+}
+INTEGER = ("step_converged", "iterations", "order", "converged", "steps", "rejected_steps", "coupled_solves", "valid",
+           "event_count", "relative_event_count", "event_open_at_end")
 
 
 def open_resistance(scene) -> float:
@@ -103,17 +121,23 @@ def reconnect_time(time, resistance, rest_from, threshold) -> float:
     return float(t[i - 1] + fraction * (t[i] - t[i - 1]) - rest_from)
 
 
-def oscillation_metrics(time, resistance, period, cycles, threshold) -> tuple[float, np.ndarray]:
-    """(fraction of [0, cycles period] with R > threshold, peak R of each cycle). Each level
-    stands for the interval to the next (left rectangles on the adaptive steps)."""
+def cycle_peaks(time, resistance, period, cycles) -> np.ndarray:
+    """Peak R of each oscillation cycle [k period, (k + 1) period) over the levels in it."""
     time, resistance = np.asarray(time), np.asarray(resistance)
-    end = cycles * period
-    inside = time < end
-    widths = np.diff(np.append(time[inside], end))
-    fraction = float(np.sum(widths[resistance[inside] > threshold]) / end)
+    inside = time < cycles * period
     cycle = np.minimum((time[inside] / period).astype(int), cycles - 1)
-    peaks = np.array([resistance[inside][cycle == k].max(initial=-np.inf) for k in range(cycles)])
-    return fraction, peaks
+    return np.array([resistance[inside][cycle == k].max(initial=-np.inf) for k in range(cycles)])
+
+
+def event_scalars(opened, relative) -> dict:
+    """The events' scalars (SCALARS) of the open resistance (``opened``) and the relative
+    threshold (``relative``), both events.Events."""
+    return {
+        "relative_threshold": relative.threshold, "min_event_duration": opened.min_duration,
+        "event_count": opened.count, "event_open_time": opened.open_time, "longest_event": opened.longest,
+        "relative_event_count": relative.count, "relative_event_open_time": relative.open_time,
+        "longest_relative_event": relative.longest,
+    }
 
 
 def level_rows(levels) -> list[dict]:
@@ -143,8 +167,23 @@ def validity_over_time(times, rows) -> tuple[str, str]:
     return ",".join(first) or "ok", "\n".join(lines)
 
 
-def series_dataset(scene, times, rows, scalars: dict, notes: str, peaks=None) -> xr.Dataset:
-    """The transient's Dataset: per-level variables (``rows``) along ``time`` and the run's scalars."""
+def event_variables(opened) -> dict:
+    """EVENT along ``event`` for the events above the open resistance (events.Events)."""
+    values = {
+        "event_start": [event.start for event in opened.events],
+        "event_duration": [event.duration for event in opened.events],
+        "event_peak_resistance": [event.peak_resistance for event in opened.events],
+        "event_open_at_end": [int(event.open_at_end) for event in opened.events],
+    }
+    return {name: xr.Variable(("event",), np.array(values[name], dtype=np.int32 if name in INTEGER else np.float64),
+                              {"units": units, "long_name": long_name})
+            for name, (units, long_name) in EVENT.items()}
+
+
+def series_dataset(scene, times, rows, scalars: dict, notes: str, peaks=None, opened=None) -> xr.Dataset:
+    """The transient's Dataset: per-level variables (``rows``) along ``time``, the run's
+    scalars, ``peak_resistance`` along ``cycle`` and the events above the open resistance
+    (``opened``, events.Events) along ``event``."""
     data = {}
     for name, (units, long_name) in SERIES.items():
         dtype = np.int32 if name in INTEGER else np.float64
@@ -161,6 +200,10 @@ def series_dataset(scene, times, rows, scalars: dict, notes: str, peaks=None) ->
         data["peak_resistance"] = xr.Variable(("cycle",), peaks, {"units": units, "long_name": long_name})
         coords["cycle"] = xr.Variable(("cycle",), np.arange(1, peaks.size + 1, dtype=np.int32),
                                       {"units": "1", "long_name": "oscillation cycle number"})
+    if opened is not None:
+        data |= event_variables(opened)
+        coords["event"] = xr.Variable(("event",), np.arange(1, opened.count + 1, dtype=np.int32),
+                                      {"units": "1", "long_name": "event number, in time order"})
     attrs = {
         "title": "lubecontact transient: a lubricated rough electrical contact after its motion changes",
         "Conventions": "CF-1.10",

@@ -13,13 +13,15 @@ from lubecontact.model.model import Model
 from lubecontact.model.prepare import prepare
 from lubecontact.numerics.blas_threads import one_blas_thread
 from lubecontact.scene import SceneError
+from lubecontact.unsteady.events import level_events
 from lubecontact.unsteady.integrator import TimeIntegrator, scene_at
 from lubecontact.unsteady.motion import SpeedHistory, motion_problems
 from lubecontact.unsteady.series import (
+    cycle_peaks,
+    event_scalars,
     instant,
     level_rows,
     open_resistance,
-    oscillation_metrics,
     reconnect_time,
     series_dataset,
     validity_over_time,
@@ -86,14 +88,22 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     if failure and math.isinf(recon):
         recon = math.nan  # the run ended early: "not within duration" is unknown
     scalars["reconnect_time"] = recon
+    # discontinuity events above the open resistance and above reconnect_factor x rest: the
+    # reconnected state of reconnect_time is the end of a relative event (docs/DESIGN.md "Time")
+    min_duration = scene.interface.min_event_duration
+    opened = level_events(levels, resistance, threshold, min_duration)
+    relative = level_events(levels, resistance, scene.motion.reconnect_factor * rest, min_duration)
+    scalars |= event_scalars(opened, relative)
     peaks = None
     fraction = math.nan
     if history.period is not None:
-        fraction, peaks = oscillation_metrics(series_t, resistance, history.period, scene.motion.cycles, threshold)
+        oscillating = history.period * scene.motion.cycles
+        fraction = opened.open_time_until(oscillating) / oscillating
+        peaks = cycle_peaks(series_t, resistance, history.period, scene.motion.cycles)
     scalars["open_fraction"] = fraction
     notes.append(f"open threshold {threshold:g} ohm (interface.open_resistance, default {threshold:g})")
     notes.append(f"cavitation: {scene.effects.cavitation} (Swift-Stieber is not mass-conserving where a film re-forms)")
-    series = series_dataset(scene, series_t, rows, scalars, "; ".join(notes), peaks)
+    series = series_dataset(scene, series_t, rows, scalars, "; ".join(notes), peaks, opened)
     series.attrs["interrupted"] = int(failure.startswith("interrupted"))
     series.attrs["validity"], series.attrs["validity_notes"] = validity_over_time(series_t, rows)
     return series
