@@ -61,7 +61,7 @@ def _errors(rho_15=RHO_15):
 def test_walther_predicts_measured_oils_between_its_two_points():
     """Measured at 60 C against the line through 30 and 100 C: 12 of the 13 oils within 6 %,
     the median within 2 %; the 'light machine oil' of the first row is 12 % off (the
-    table's own outlier: its neighbours of like viscosity sit within 1 %)."""
+    table's own outlier: the other light machine oil sits within 1 %)."""
     errors = _errors()
     assert sorted(abs(e) for e in errors.values())[len(errors) // 2] < 0.02
     assert all(abs(e) < 0.06 for name, e in errors.items() if name != "light machine oil")
