@@ -213,3 +213,13 @@ def test_a_viscosity_override_on_a_datasheet_scene_is_refused():
     scene = load_scene(_scene(40.0))
     with pytest.raises(SceneError, match="lubricant.viscosity = 0.2: derived from the datasheet"):
         scene.replace({"lubricant.viscosity": 0.2})
+
+
+def test_datasheet_overrides_replace_the_viscosity_of_a_scene_file():
+    """As roughness.surface replaces sigma: --set of the datasheet on table1.yaml (which writes
+    viscosity: 0.1) drops that viscosity; setting the viscosity too is still refused."""
+    overrides = {f"lubricant.{k}": v for k, v in DATASHEET.items()} | {"operating.temperature": 40.0}
+    scene = load_scene("config/scenes/table1.yaml", overrides)
+    assert scene.lubricant.viscosity == pytest.approx(32.0e-6 * density(870.0, 40.0), rel=1e-12)
+    assert "lubricant.viscosity = 0.2" in _error("config/scenes/table1.yaml", {**overrides, "lubricant.viscosity": 0.2})
+    assert "lacks lubricant.kinematic_viscosity_100" in _error("config/scenes/table1.yaml", {"lubricant.kinematic_viscosity_40": 32})

@@ -442,7 +442,7 @@ class Operating(_Section):
     speed: float = _field(0.1, _nonnegative("m/s"), "sliding speed U of the block")
     temperature: float | None = _field(
         None, _NotGivenOr(_Real("degC", low=-KELVIN, high=D341_HIGHEST_TEMPERATURE, high_open=False)),
-        "temperature of the oil; with the lubricant's datasheet keys it sets lubricant.viscosity",
+        "temperature of the oil (with the lubricant's datasheet keys it sets lubricant.viscosity)",
     )
 
     def to_dict(self):
@@ -815,6 +815,16 @@ def _surface_replaces(raw, overrides: Mapping):
     return {**raw, "roughness": {k: v for k, v in raw["roughness"].items() if k not in SURFACE_SETS}}
 
 
+def _datasheet_replaces(raw, overrides: Mapping):
+    """An override of the lubricant's datasheet (lubricant.kinematic_viscosity_40, ...) replaces
+    the viscosity of the scene it overrides (it comes from the datasheet), as a surface
+    replaces sigma; overriding the viscosity as well is still refused."""
+    keys = {k for k in DATASHEET_KEYS if k.startswith("lubricant.")}
+    if not keys & set(overrides) or not isinstance(raw, Mapping) or not isinstance(raw.get("lubricant"), Mapping):
+        return raw
+    return {**raw, "lubricant": {k: v for k, v in raw["lubricant"].items() if k != "viscosity"}}
+
+
 def _measured(roughness, raw, directory: str, problems: list[str]):
     """The roughness section with sigma, eta and R_peak from ``roughness.surface``
     (McCool's method, lubecontact.surfaces); unchanged without a surface."""
@@ -959,7 +969,8 @@ def load_scene(path_or_mapping, overrides: Mapping | None = None) -> Scene:
     _bounded(raw, origin)
     _bounded(dict(overrides or {}), "overrides")
     problems: list[str] = []
-    raw = _apply_overrides(_surface_replaces(raw, overrides or {}), overrides or {}, problems)
+    replaced = _datasheet_replaces(_surface_replaces(raw, overrides or {}), overrides or {})
+    raw = _apply_overrides(replaced, overrides or {}, problems)
     if not isinstance(raw, Mapping):
         raise SceneError(origin, problems + [f"{raw!r}: a scene is a mapping of sections {', '.join(SECTIONS)}"])
     problems.extend(_unknown_key(str(k)) for k in raw if k not in SECTIONS)
