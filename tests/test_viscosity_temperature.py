@@ -202,6 +202,8 @@ def test_overrides_and_round_trips_rederive_the_viscosity():
      ["operating.temperature = 330.0", "0.16 mm^2/s", ">= 0.21 mm^2/s"]),
     (_scene(40.0, density=1900.0), ["lubricant.density = 1900.0", "[800, 1164]"]),
     ({"lubricant": {"pour_point": -20.0}}, ["lubricant.pour_point = -20.0", "no operating.temperature"]),
+    (_scene(40.0, kinematic_viscosity_40=0.1, kinematic_viscosity_100=0.05),
+     ["lubricant.kinematic_viscosity_40 = 0.1", "lubricant.kinematic_viscosity_100 = 0.05", ">= 0.21 (mm^2/s)"]),
 ])
 def test_bad_datasheets_are_refused_naming_the_keys(data, needles):
     message = _error(data)

@@ -382,6 +382,9 @@ class Roughness(_Section):
         return {**self._all_keys(), "surface": f"sha256:{self.surface_sha256}"}
 
 
+_D341_VISCOSITY = _Real("mm^2/s", low=D341_LOWEST_VISCOSITY, low_open=False)
+
+
 @dataclass(frozen=True)
 class Lubricant(_Section):
     # <= 1e6 Pa s (far above any lubricant): 1e200 overflowed the film coefficients (issue 13)
@@ -392,11 +395,12 @@ class Lubricant(_Section):
         1.0e12, _positive("Ohm m"), "electrical resistivity of the lubricant rho_f (effects.film_conduction)"
     )
     # The datasheet (docs/physics.md section 19): with operating.temperature these set viscosity.
+    # Not below 0.21 mm^2/s, the end of D341's equations (below 0.11 log10 log10 Z fails).
     kinematic_viscosity_40: float | None = _field(
-        None, _NotGivenOr(_positive("mm^2/s")), "datasheet kinematic viscosity at 40 C (cSt); sets viscosity (ASTM D341)"
+        None, _NotGivenOr(_D341_VISCOSITY), "datasheet kinematic viscosity at 40 C (cSt); sets viscosity (ASTM D341)"
     )
     kinematic_viscosity_100: float | None = _field(
-        None, _NotGivenOr(_positive("mm^2/s")), "datasheet kinematic viscosity at 100 C (cSt); sets viscosity (ASTM D341)"
+        None, _NotGivenOr(_D341_VISCOSITY), "datasheet kinematic viscosity at 100 C (cSt); sets viscosity (ASTM D341)"
     )
     # API MPMS 11.1's density law holds for lubricating oils of 800-1164 kg/m^3 at 15 C.
     density: float | None = _field(
@@ -910,18 +914,23 @@ def _at_temperature(sections: dict, raw, problems: list[str]):
                         f"liquid only)")
         return None
     viscosity_rule = dict(Lubricant.rules())["viscosity"]
+    too_viscous = (f"operating.temperature = {temperature!r}: the oil of this datasheet is too viscous there; allowed: "
+                   f"a temperature where the derived lubricant.viscosity is {viscosity_rule.allowed}")
     try:
         nu = WaltherLine.through(40.0, nu_40, 100.0, nu_100).kinematic_viscosity(temperature)
-        viscosity = viscosity_rule(density(lubricant.density, temperature) * nu * 1e-6)
-    except (OverflowError, _Invalid):
-        problems.append(f"operating.temperature = {temperature!r}: the oil of this datasheet is too viscous there; "
-                        f"allowed: a temperature where the derived lubricant.viscosity is {viscosity_rule.allowed}")
+    except OverflowError:
+        problems.append(too_viscous)
         return None
     if nu < D341_LOWEST_VISCOSITY:
         problems.append(
             f"operating.temperature = {temperature!r}: the datasheet gives a kinematic viscosity of {nu:.3g} mm^2/s "
             f"there; allowed: a temperature where it is >= {D341_LOWEST_VISCOSITY} mm^2/s (ASTM D341's equations)"
         )
+        return None
+    try:  # only the upper bound can fail here
+        viscosity = viscosity_rule(density(lubricant.density, temperature) * nu * 1e-6)
+    except _Invalid:
+        problems.append(too_viscous)
         return None
     return replace(lubricant, viscosity=viscosity)
 
