@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 KELVIN = 273.15  # 0 C in kelvin
 # D341's equations hold down to this kinematic viscosity (mm^2/s) with the exponential term
-# (below 0.11 mm^2/s Z < 1 and log10 log10 Z does not even exist).
+# (below 0.115 mm^2/s Z < 1 and log10 log10 Z does not even exist).
 D341_LOWEST_VISCOSITY = 0.21
 # D341 (section 3): the charts stay straight up to about 340 C.
 D341_HIGHEST_TEMPERATURE = 340.0

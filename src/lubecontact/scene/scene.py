@@ -395,7 +395,7 @@ class Lubricant(_Section):
         1.0e12, _positive("Ohm m"), "electrical resistivity of the lubricant rho_f (effects.film_conduction)"
     )
     # The datasheet (docs/physics.md section 19): with operating.temperature these set viscosity.
-    # Not below 0.21 mm^2/s, the end of D341's equations (below 0.11 log10 log10 Z fails).
+    # Not below 0.21 mm^2/s, the end of D341's equations (below 0.115 log10 log10 Z fails).
     kinematic_viscosity_40: float | None = _field(
         None, _NotGivenOr(_D341_VISCOSITY), "datasheet kinematic viscosity at 40 C (cSt); sets viscosity (ASTM D341)"
     )
