@@ -7,6 +7,7 @@ import pytest
 
 import lubecontact as lc
 from lubecontact.physics.materials import effective_modulus
+from lubecontact.physics.viscosity_temperature import density
 
 SCENES = Path("config/scenes")
 GALLERY = sorted(p.stem for p in SCENES.glob("*.yaml") if p.stem != "table1")
@@ -32,7 +33,7 @@ def solved():
 
 def test_the_gallery_has_the_promised_scenes():
     assert {"dry_static", "smooth_full_film", "gold_connector_pao", "gold_connector_pfpe", "auto_effects",
-            "measured_ground"} <= set(GALLERY)
+            "measured_ground", "gold_connector_vg32_datasheet"} <= set(GALLERY)
 
 
 @pytest.mark.parametrize("name", GALLERY)
@@ -80,6 +81,20 @@ def test_gold_connectors_are_gold_and_the_pfpe_film_carries_more(solved):
     # same contact, only the viscosity differs: the more viscous oil lifts more and conducts less
     assert ds_pfpe["fluid_force"].item() > ds_pao["fluid_force"].item()
     assert ds_pfpe["contact_resistance"].item() > ds_pao["contact_resistance"].item()
+
+
+def test_datasheet_oil_follows_the_temperature(solved):
+    """The VG 32 datasheet scene at 35 C: its kinematic viscosity lies between its 32 mm^2/s at
+    40 C and the 68 of the next grade but one; the same contact at a 15 C cold aisle is more
+    viscous, lifts more and conducts less."""
+    hot, ds_hot = solved("gold_connector_vg32_datasheet")
+    assert 32e-6 < hot.lubricant.viscosity / density(870.0, 35.0) < 68e-6
+    assert "temperature: 35.0" in ds_hot.attrs["scene"] and "kinematic_viscosity_40: 32.0" in ds_hot.attrs["scene"]
+    cold = hot.replace({"operating.temperature": 15})
+    ds_cold = lc.solve(cold)
+    assert cold.lubricant.viscosity > 2 * hot.lubricant.viscosity
+    assert ds_cold["fluid_force"].item() > ds_hot["fluid_force"].item()
+    assert ds_cold["contact_resistance"].item() > ds_hot["contact_resistance"].item()
 
 
 def test_auto_scene_records_its_decisions(solved):

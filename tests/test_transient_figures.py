@@ -8,6 +8,8 @@ from matplotlib.text import Text
 
 import lubecontact as lc
 from lubecontact.plotting import transient as plots
+from lubecontact.plotting.figures import unit_label
+from lubecontact.studies.transient_cases import key_words
 
 
 def series(fraction=0.25):
@@ -38,3 +40,15 @@ def test_coinciding_reconnect_series_stay_visible():
     lines = [line for line in fig.axes[0].get_lines() if line.get_label().startswith("F =")]
     assert len({line.get_marker() for line in lines}) == 2  # equal times: different markers
     assert lines[1].get_markersize() < lines[0].get_markersize() and lines[1].get_zorder() > lines[0].get_zorder()
+
+
+def test_a_temperature_chart_keeps_zero_celsius_on_a_linear_axis():
+    """The temperature design chart (config/transient.yaml figures.temperature): a cold start at
+    0 C cannot sit on a log axis; the unit is written as C, not as the key's 'degC'."""
+    points = [{"x": t, "series": 5.0, "label": "F = 5 N", "ds": series()} for t in (0.0, 20.0, 45.0)]
+    fig = plots.reconnect_figure(points, key_words("operating.temperature"), unit_label("degC"), "title", log_x=False)
+    ax = fig.axes[0]
+    assert ax.get_xscale() == "linear" and ax.get_yscale() == "log"
+    assert ax.get_xlabel() == "temperature of the oil (\u00b0C)"
+    line, = [line for line in ax.get_lines() if line.get_label() == "F = 5 N"]
+    assert list(line.get_xdata()) == [0.0, 20.0, 45.0]

@@ -9,7 +9,7 @@ from lubecontact.studies import transient_cases as lcstudy
 TRANSIENT = lcstudy.study_spec("config/transient.yaml", config.get("transient"))
 TRANSIENT_CASES = lcstudy.figure_cases(TRANSIENT)
 TRANSIENT_OVERRIDES = lcstudy.case_overrides(TRANSIENT, TRANSIENT_CASES)
-TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_vibration"]
+TRANSIENT_FIGURES = [f"transient_{name}" for name in TRANSIENT["figures"]]
 
 
 wildcard_constraints:
@@ -52,7 +52,7 @@ rule transient_figure:
         cases=lambda w: [{k: v for k, v in c.items() if k != "overrides"} for c in TRANSIENT_CASES[w.name]],
         spec=lambda w: TRANSIENT["figures"][w.name],
     wildcard_constraints:
-        name="stop|reconnect|vibration",
+        name="|".join(TRANSIENT["figures"]),
     log:
         f"{RESULTS}/logs/transient/figure_{{name}}.log",
     conda:

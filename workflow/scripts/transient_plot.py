@@ -6,7 +6,7 @@ import this_tree  # noqa: F401  (this tree's src/ first on sys.path)
 import xarray as xr
 
 from lubecontact.plotting import transient as plots
-from lubecontact.plotting.figures import save
+from lubecontact.plotting.figures import save, unit_label
 from lubecontact.studies import transient_cases as study
 
 with open(snakemake.log[0], "w") as log:
@@ -16,9 +16,10 @@ with open(snakemake.log[0], "w") as log:
     name = snakemake.wildcards.name
     if name == "stop":
         fig = plots.stop_figure([(c["label"], ds) for c, ds in zip(cases, data)], spec["title"])
-    elif name == "reconnect":
+    elif "x" in spec:  # a design chart: reconnect, temperature
         points = [{**c, "ds": ds} for c, ds in zip(cases, data)]
-        fig = plots.reconnect_figure(points, study.key_words(spec["x"]), study.key_units(spec["x"]), spec["title"])
+        fig = plots.reconnect_figure(points, study.key_words(spec["x"]), unit_label(study.key_units(spec["x"])),
+                                     spec["title"], log_x=spec.get("x_scale", "log") == "log")
     else:
         fig = plots.vibration_figure(data[0], spec["title"])
     save(fig, [snakemake.output.png, snakemake.output.pdf])

@@ -3,7 +3,8 @@
 (a) ``stop_figure``: contact resistance and minimum film thickness against time (log axis,
 time after the motion stops) for several variants of one contact; the resting resistance
 times the reconnect factor as a dotted line, the reconnect time as a marker.
-(b) ``reconnect_figure``: reconnect time against a swept parameter (log-log), one line per
+(b) ``reconnect_figure``: reconnect time (log) against a swept parameter (log, or linear for a
+temperature), one line per
 series value; a run that never reconnected within its duration is drawn as a triangle on
 the top edge, one already reconnected when the block stopped (reconnect_time = 0) as a
 triangle on the bottom edge, a run that did not converge as a red cross.
@@ -52,8 +53,9 @@ def stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
 SERIES_MARKERS = ("o", "s", "D", "^", "v")
 
 
-def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str) -> Figure:
-    """points: {"x", "series", "label", "ds"} of the design chart."""
+def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str, log_x: bool = True) -> Figure:
+    """points: {"x", "series", "label", "ds"} of the design chart; ``log_x`` False for an x
+    that may be zero or negative (a temperature in C)."""
     fig = Figure(figsize=(6.5, 4.5), layout="constrained")
     ax = fig.subplots()
     finite = [t for p in points if math.isfinite(t := float(p["ds"]["reconnect_time"])) and t > 0]
@@ -67,13 +69,15 @@ def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str)
         color = f"C{i}"
         drawn = np.isfinite(y) & (y > 0) & ok
         # series that coincide stay visible: each its own marker, the later ones smaller and on top
-        ax.loglog(x[drawn], y[drawn], "-", marker=SERIES_MARKERS[i % len(SERIES_MARKERS)], markersize=max(9 - 2 * i, 3),
+        ax.plot(x[drawn], y[drawn], "-", marker=SERIES_MARKERS[i % len(SERIES_MARKERS)], markersize=max(9 - 2 * i, 3),
                   color=color, label=line[0]["label"], zorder=2 + i)
         never = ~np.isfinite(y) & ok
         ax.plot(x[never], np.full(never.sum(), top), "^", color=color)
         already = (y == 0) & ok
         ax.plot(x[already], np.full(already.sum(), bottom), "v", color=color)
         ax.plot(x[~ok], np.where(np.isfinite(y[~ok]), y[~ok], top), "x", color="red", ms=9)
+    ax.set_xscale("log" if log_x else "linear")
+    ax.set_yscale("log")
     ax.set_xlabel(f"{x_label} ({x_units})")
     ax.set_ylabel("reconnect time (s)")
     ax.set_title(title + "\n\u25b2 not within the run; \u25bc before the block stopped; red \u00d7 not converged",

@@ -32,6 +32,13 @@ import numpy as np
 import yaml
 
 from lubecontact.numerics.mesh import mesh_problems
+from lubecontact.physics.viscosity_temperature import (
+    D341_HIGHEST_TEMPERATURE,
+    D341_LOWEST_VISCOSITY,
+    KELVIN,
+    WaltherLine,
+    density,
+)
 
 AUTO = "auto"
 # The YAML emitter of the canonical text (Scene.canonical_yaml): libyaml's where PyYAML has
@@ -238,6 +245,27 @@ class _AutoOr:
 
 
 @dataclass(frozen=True)
+class _NotGivenOr:
+    """'none' or left out (stored as None: the key is not given) or a value of the inner rule."""
+
+    inner: _Real
+
+    @property
+    def unit(self) -> str:
+        return self.inner.unit
+
+    @property
+    def allowed(self) -> str:
+        return f"none (not given) or {self.inner.allowed}"
+
+    def __call__(self, value):
+        return None if value is None or value == "none" else self.inner(value)
+
+    def dump(self, value):
+        return value
+
+
+@dataclass(frozen=True)
 class _OptionalPath:
     """A file path (text), or none."""
 
@@ -354,6 +382,9 @@ class Roughness(_Section):
         return {**self._all_keys(), "surface": f"sha256:{self.surface_sha256}"}
 
 
+_D341_VISCOSITY = _Real("mm^2/s", low=D341_LOWEST_VISCOSITY, low_open=False)
+
+
 @dataclass(frozen=True)
 class Lubricant(_Section):
     # <= 1e6 Pa s (far above any lubricant): 1e200 overflowed the film coefficients (issue 13)
@@ -363,6 +394,34 @@ class Lubricant(_Section):
     resistivity: float = _field(
         1.0e12, _positive("Ohm m"), "electrical resistivity of the lubricant rho_f (effects.film_conduction)"
     )
+    # The datasheet (docs/physics.md section 19): with operating.temperature these set viscosity.
+    # Not below 0.21 mm^2/s, the end of D341's equations (below 0.115 log10 log10 Z fails).
+    kinematic_viscosity_40: float | None = _field(
+        None, _NotGivenOr(_D341_VISCOSITY), "datasheet kinematic viscosity at 40 C (cSt); sets viscosity (ASTM D341)"
+    )
+    kinematic_viscosity_100: float | None = _field(
+        None, _NotGivenOr(_D341_VISCOSITY), "datasheet kinematic viscosity at 100 C (cSt); sets viscosity (ASTM D341)"
+    )
+    # API MPMS 11.1's density law holds for lubricating oils of 800-1164 kg/m^3 at 15 C.
+    density: float | None = _field(
+        None, _NotGivenOr(_Real("kg/m^3", low=800.0, low_open=False, high=1164.0, high_open=False)),
+        "datasheet density at 15 C (ISO 12185 / ASTM D4052); mu = rho nu at operating.temperature",
+    )
+    pour_point: float | None = _field(
+        None, _NotGivenOr(_Real("degC")), "datasheet pour point (optional): operating.temperature must be above it"
+    )
+
+    def to_dict(self):
+        """Keys not given left out (scenes without a datasheet keep their hash); with a
+        datasheet, no viscosity (it comes from the datasheet when the dict is loaded again)."""
+        data = {k: v for k, v in super().to_dict().items() if v is not None}
+        if self.kinematic_viscosity_40 is not None:
+            del data["viscosity"]
+        return data
+
+    def canonical_dict(self):
+        """The case's identity: the datasheet with the viscosity derived from it."""
+        return {**self.to_dict(), "viscosity": self.viscosity}
 
 
 @dataclass(frozen=True)
@@ -397,6 +456,14 @@ class Interface(_Section):
 class Operating(_Section):
     force: float = _field(5.0, _positive("N"), "normal force on the cylinder F")
     speed: float = _field(0.1, _nonnegative("m/s"), "sliding speed U of the block")
+    temperature: float | None = _field(
+        None, _NotGivenOr(_Real("degC", low=-KELVIN, high=D341_HIGHEST_TEMPERATURE, high_open=False)),
+        "temperature of the oil (with the lubricant's datasheet keys it sets lubricant.viscosity)",
+    )
+
+    def to_dict(self):
+        """Without the temperature when it is not given (older scenes keep their hash)."""
+        return {k: v for k, v in super().to_dict().items() if k != "temperature" or v is not None}
 
 
 @dataclass(frozen=True)
@@ -542,7 +609,8 @@ class Scene:
         # its dataset's attributes. libyaml's emitter writes the same text as PyYAML's
         # pure-Python one (all 1174 scenes of config/config.yaml) in a tenth of the time:
         # planning the default workflow hashed 1421 scenes in 5.7 s with the latter.
-        data = {**self.to_dict(), "roughness": self.roughness.canonical_dict()}
+        data = {**self.to_dict(), "roughness": self.roughness.canonical_dict(),
+                "lubricant": self.lubricant.canonical_dict()}
         return yaml.dump(data, Dumper=_SAFE_DUMPER, sort_keys=True, default_flow_style=False)
 
     @cached_property
@@ -775,6 +843,16 @@ def _surface_replaces(raw, overrides: Mapping):
     return {**raw, "roughness": {k: v for k, v in raw["roughness"].items() if k not in SURFACE_SETS}}
 
 
+def _datasheet_replaces(raw, overrides: Mapping):
+    """An override of the lubricant's datasheet (lubricant.kinematic_viscosity_40, ...) replaces
+    the viscosity of the scene it overrides (it comes from the datasheet), as a surface
+    replaces sigma; overriding the viscosity as well is still refused."""
+    keys = {k for k in DATASHEET_KEYS if k.startswith("lubricant.")}
+    if not keys & set(overrides) or not isinstance(raw, Mapping) or not isinstance(raw.get("lubricant"), Mapping):
+        return raw
+    return {**raw, "lubricant": {k: v for k, v in raw["lubricant"].items() if k != "viscosity"}}
+
+
 def _measured(roughness, raw, directory: str, problems: list[str]):
     """The roughness section with sigma, eta and R_peak from ``roughness.surface``
     (McCool's method, lubecontact.surfaces); unchanged without a surface."""
@@ -806,6 +884,79 @@ def _measured(roughness, raw, directory: str, problems: list[str]):
         return None
     values = dict(zip(SURFACE_SETS, (params.sigma, params.asperity_density, params.asperity_radius)))
     return replace(roughness, **values, surface_sha256=digest, directory=directory)
+
+
+# The lubricant's datasheet: all of these, or none (docs/physics.md section 19).
+DATASHEET_KEYS = ("lubricant.kinematic_viscosity_40", "lubricant.kinematic_viscosity_100", "lubricant.density",
+                  "operating.temperature")
+DATASHEET_ALLOWED = (
+    "all of " + ", ".join(DATASHEET_KEYS) + " (lubricant.viscosity is then derived from them), or none of them"
+)
+
+
+def _datasheet_value(sections: dict, key: str):
+    section, _, name = key.partition(".")
+    return getattr(sections[section], name)
+
+
+def _at_temperature(sections: dict, raw, problems: list[str]):
+    """The lubricant section with its viscosity from the datasheet at operating.temperature
+    (ASTM D341 and the API density law, docs/physics.md section 19); unchanged without a
+    datasheet. A partial datasheet, a viscosity given as well, an oil that thickens as it
+    warms, a temperature at or below the pour point or a result outside D341 are refused."""
+    lubricant, operating = sections["lubricant"], sections["operating"]
+    if lubricant is None or operating is None:
+        return lubricant
+    given = {k: _datasheet_value(sections, k) for k in DATASHEET_KEYS if _datasheet_value(sections, k) is not None}
+    if not given:
+        if lubricant.pour_point is not None:
+            problems.append(f"lubricant.pour_point = {lubricant.pour_point!r}: no operating.temperature to check; "
+                            f"allowed: with {DATASHEET_ALLOWED}")
+            return None
+        return lubricant
+    missing = [k for k in DATASHEET_KEYS if k not in given]
+    if missing:
+        grade = (" (an ISO VG grade, ISO 3448, fixes only the 40 C viscosity, within 10 %: the 100 C value "
+                 "from the datasheet gives the slope)") if "lubricant.kinematic_viscosity_100" in missing else ""
+        problems.append(
+            f"{', '.join(f'{k} = {v!r}' for k, v in given.items())}: the datasheet lacks {', '.join(missing)}"
+            f"{grade}; allowed: {DATASHEET_ALLOWED}"
+        )
+        return None
+    if isinstance(raw, Mapping) and "viscosity" in raw:
+        problems.append(f"lubricant.viscosity = {raw['viscosity']!r}: derived from the datasheet; allowed: leave out "
+                        f"lubricant.viscosity when the datasheet is given ({DATASHEET_ALLOWED})")
+        return None
+    nu_40, nu_100, temperature = lubricant.kinematic_viscosity_40, lubricant.kinematic_viscosity_100, operating.temperature
+    if nu_100 >= nu_40:
+        problems.append(f"lubricant.kinematic_viscosity_100 = {nu_100!r}: not below lubricant.kinematic_viscosity_40 = "
+                        f"{nu_40!r}; allowed: < kinematic_viscosity_40 (an oil thins as it warms)")
+        return None
+    if lubricant.pour_point is not None and temperature <= lubricant.pour_point:
+        problems.append(f"operating.temperature = {temperature!r}: at or below lubricant.pour_point = "
+                        f"{lubricant.pour_point!r}; allowed: above the pour point (ASTM D341 holds for a homogeneous "
+                        f"liquid only)")
+        return None
+    viscosity_rule = dict(Lubricant.rules())["viscosity"]
+    too_viscous = (f"operating.temperature = {temperature!r}: the oil of this datasheet is too viscous there; allowed: "
+                   f"a temperature where the derived lubricant.viscosity is {viscosity_rule.allowed}")
+    try:
+        nu = WaltherLine.through(40.0, nu_40, 100.0, nu_100).kinematic_viscosity(temperature)
+    except OverflowError:
+        problems.append(too_viscous)
+        return None
+    if nu < D341_LOWEST_VISCOSITY:
+        problems.append(
+            f"operating.temperature = {temperature!r}: the datasheet gives a kinematic viscosity of {nu:.3g} mm^2/s "
+            f"there; allowed: a temperature where it is >= {D341_LOWEST_VISCOSITY} mm^2/s (ASTM D341's equations)"
+        )
+        return None
+    try:  # only the upper bound can fail here
+        viscosity = viscosity_rule(density(lubricant.density, temperature) * nu * 1e-6)
+    except _Invalid:
+        problems.append(too_viscous)
+        return None
+    return replace(lubricant, viscosity=viscosity)
 
 
 def _cross_problems(s: dict) -> list[str]:
@@ -857,7 +1008,8 @@ def load_scene(path_or_mapping, overrides: Mapping | None = None) -> Scene:
     _bounded(raw, origin)
     _bounded(dict(overrides or {}), "overrides")
     problems: list[str] = []
-    raw = _apply_overrides(_surface_replaces(raw, overrides or {}), overrides or {}, problems)
+    replaced = _datasheet_replaces(_surface_replaces(raw, overrides or {}), overrides or {})
+    raw = _apply_overrides(replaced, overrides or {}, problems)
     if not isinstance(raw, Mapping):
         raise SceneError(origin, problems + [f"{raw!r}: a scene is a mapping of sections {', '.join(SECTIONS)}"])
     problems.extend(_unknown_key(str(k)) for k in raw if k not in SECTIONS)
@@ -865,6 +1017,7 @@ def load_scene(path_or_mapping, overrides: Mapping | None = None) -> Scene:
     raw = _table_beside_scene(raw, directory)
     sections = {name: _build_section(name, raw.get(name), problems) for name in SECTIONS}
     sections["roughness"] = _measured(sections["roughness"], raw.get("roughness"), directory, problems)
+    sections["lubricant"] = _at_temperature(sections, raw.get("lubricant"), problems)
     problems.extend(_cross_problems(sections))
     if problems:
         raise SceneError(origin, problems)

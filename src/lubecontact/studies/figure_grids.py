@@ -41,7 +41,7 @@ MESH_KEYS = {"mesh.nx", "mesh.ny"}
 # Dataset carries them as coordinates, along their dimension when swept, else as scalars.
 RECORDED_KEYS = ("operating.force", "lubricant.viscosity")
 # Scene units (lubecontact.scene) -> CF/UDUNITS spelling used in the netCDF files.
-CF_UNITS = {"m/s": "m s-1", "1/m^2": "m-2", "Ohm m": "ohm m"}
+CF_UNITS = {"m/s": "m s-1", "1/m^2": "m-2", "Ohm m": "ohm m", "mm^2/s": "mm2 s-1", "kg/m^3": "kg m-3"}
 
 
 class GridError(ValueError):

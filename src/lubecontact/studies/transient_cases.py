@@ -1,9 +1,10 @@
 """The transient figures' cases (config/transient.yaml): which scenes to run, by content hash.
 
-A study names a base scene and overrides shared by every case, and three figures:
-``stop`` (curves: a list of {label, set: overrides}), ``reconnect`` (optional set: overrides of
-every case; x: a dotted key and its values, one
-line per value of ``series``), ``vibration`` (one case). Each case is a scene; its hash is
+A study names a base scene and overrides shared by every case, and its figures:
+``stop`` (curves: a list of {label, set: overrides}), design charts such as ``reconnect``
+and ``temperature`` (any figure with an ``x``: optional set: overrides of every case; x: a
+dotted key and its values, one line per value of ``series``), ``vibration`` (one case).
+Each case is a scene; its hash is
 the case identity (results/transient/<hash>.nc), so a case shared by two figures (the
 baseline stop) runs once. Library code: reads only the base scene.
 """
@@ -43,18 +44,24 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
     out = {}
     stop = figures["stop"]
     out["stop"] = [{"label": curve["label"], "overrides": dict(curve.get("set") or {})} for curve in stop["curves"]]
-    chart = figures["reconnect"]
-    (series_key, series_values), = chart["series"].items()
-    out["reconnect"] = [
-        {"label": f"{key_words(series_key)} = {s:g} {key_units(series_key)}", "x": x, "series": s,
-         "overrides": {**(chart.get("set") or {}), chart["x"]: x, series_key: s}}
-        for s in series_values for x in chart["values"]
-    ]
+    for name, chart in figures.items():
+        if "x" in chart:
+            out[name] = _design_chart(chart)
     out["vibration"] = [{"label": "vibration", "overrides": dict(figures["vibration"]["set"])}]
     for cases in out.values():
         for case in cases:
             case["id"] = _scene(spec, case["overrides"]).hash
     return out
+
+
+def _design_chart(chart: Mapping) -> list[dict]:
+    """The cases of a design chart: every x value for every series value."""
+    (series_key, series_values), = chart["series"].items()
+    return [
+        {"label": f"{key_words(series_key)} = {s:g} {key_units(series_key)}", "x": x, "series": s,
+         "overrides": {**(chart.get("set") or {}), chart["x"]: x, series_key: s}}
+        for s in series_values for x in chart["values"]
+    ]
 
 
 def key_words(dotted: str) -> str:
