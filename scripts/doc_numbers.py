@@ -1,11 +1,18 @@
 """Write the numbers the docs quote into README.md and results/README.md, so no such number
 is typed by hand: the default run's cases, chunks, figures and cluster submissions, from the
-workflow's own planning (between ``<!-- planned:NAME -->`` and ``<!-- /planned -->``), and
-a few cheap solves (51 x 51, seconds in all) between ``<!-- solved:NAME -->`` and
-``<!-- /solved -->``. ``--check`` only says whether both files are current (exit 1 if
-not); tests/test_docs.py runs it.
+workflow's own planning (between ``<!-- planned:NAME -->`` and ``<!-- /planned -->``), a
+few cheap solves (51 x 51, seconds in all) between ``<!-- solved:NAME -->`` and
+``<!-- /solved -->``, and with ``--runs`` the blocks of long runs (transient stops, the
+accuracy study, their times; scripts/doc_runs.py) between ``<!-- run:NAME -->`` and
+``<!-- /run -->``. ``--check`` only says whether both files are current (exit 1 if not):
+planned numbers exactly, solved ones within 1 %, and of the long runs the cheap results
+(``<!-- measured:NAME -->``, doc_runs.CHECKED) within 2 %; it never reruns a block, and
+never checks a time. tests/test_docs.py runs it.
 
-    .venv/bin/python scripts/doc_numbers.py           # rewrite the numbers
+    .venv/bin/python scripts/doc_numbers.py           # rewrite the planned and solved numbers
+    .venv/bin/python scripts/doc_numbers.py --runs    # and every run block (minutes: one core, by hand)
+    .venv/bin/python scripts/doc_numbers.py --runs --accuracy-study results/accuracy/study.nc
+                                                      # the accuracy table from the workflow's study
     .venv/bin/python scripts/doc_numbers.py --check   # are they current?
 """
 
@@ -17,6 +24,7 @@ from pathlib import Path
 
 import yaml
 
+import doc_runs
 from lubecontact.model.solve import solve
 from lubecontact.scene import load_scene
 from lubecontact.studies import figure_grids, transient_cases
@@ -24,6 +32,8 @@ from lubecontact.studies import figure_grids, transient_cases
 ROOT = Path(__file__).resolve().parents[1]
 FILES = [ROOT / "README.md", ROOT / "results" / "README.md"]
 MARK = re.compile(r"<!-- (planned|solved):(\w+) -->(.*?)<!-- /(?:planned|solved) -->", re.S)
+RUN = re.compile(r"<!-- run:(\w+) -->\n(.*?)\n<!-- /run -->", re.S)
+MEASURED = re.compile(r"<!-- measured:(\w+) -->(.*?)<!-- /measured -->", re.S)
 TABLE1 = ROOT / "config" / "scenes" / "table1.yaml"
 # solved numbers: name -> overrides of Table 1 (51 x 51, F = 5 N); the contact resistance, ohm
 SOLVED = {
@@ -96,28 +106,71 @@ def current(text: str, values: dict) -> str:
 
 def _same(kind: str, old: str, new: str) -> bool:
     """A planned number exactly; a solved one within 1 % (round-off of another BLAS may move
-    its last printed digit)."""
+    its last printed digit); a measured one within 2 % (a transient's steps may fall
+    differently)."""
     if kind == "planned" or old == new:
         return old == new
     try:
-        return math.isclose(float(old), float(new), rel_tol=1e-2)
+        return math.isclose(float(old), float(new), rel_tol=2e-2 if kind == "measured" else 1e-2)
     except ValueError:
         return False
+
+
+def run_blocks(accuracy_study: Path | None) -> dict[str, str]:
+    """Every block of the long runs by name (scripts/doc_runs.py), run now."""
+    return {**doc_runs.transient_blocks(progress), "accuracy": doc_runs.accuracy_block(accuracy_study, progress)}
+
+
+def progress(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
+
+
+def with_runs(text: str, blocks: dict[str, str]) -> str:
+    def fill(match):
+        name = match.group(1)
+        if name not in blocks:
+            raise KeyError(f"unknown run block {name!r}; known: {', '.join(blocks)}")
+        return f"<!-- run:{name} -->\n{blocks[name]}\n<!-- /run -->"
+
+    return RUN.sub(fill, text)
+
+
+def stale_measured(text: str) -> list[str]:
+    """The cheap results of the long runs (doc_runs.CHECKED) that a run now does not reproduce."""
+    stale = []
+    for name, old in MEASURED.findall(text):
+        if name in doc_runs.CHECKED:
+            new = doc_runs.checked_number(name)
+            if not _same("measured", old, new):
+                stale.append(f"{name} = {old} (now {new})")
+    return stale
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="exit 1 if a quoted number is not current")
+    parser.add_argument("--runs", action="store_true", help="also rerun the long runs and rewrite their blocks (minutes)")
+    parser.add_argument("--accuracy-study", type=Path, metavar="STUDY_NC",
+                        help="with --runs: take the accuracy study from this file (the workflow's "
+                             "results/accuracy/study.nc) instead of running it")
     args = parser.parse_args(argv)
+    if args.check and args.runs:
+        parser.error("--check never reruns the long runs: give --check or --runs")
+    if args.accuracy_study and not args.runs:
+        parser.error("--accuracy-study goes with --runs")
+    if args.accuracy_study and not args.accuracy_study.is_file():
+        parser.error(f"--accuracy-study {args.accuracy_study}: no such file")
     values = numbers()
+    blocks = run_blocks(args.accuracy_study) if args.runs else None
     stale = []
     for path in FILES:
         text = path.read_text()
-        wanted = current(text, values)
+        wanted = current(with_runs(text, blocks) if blocks else text, values)
         if args.check:
             stale += [f"{path.relative_to(ROOT)}: {name} = {old} (now {new})"
                       for (kind, name, old), (_, _, new) in zip(MARK.findall(text), MARK.findall(wanted))
                       if not _same(kind, old, new)]
+            stale += [f"{path.relative_to(ROOT)}: {line}" for line in stale_measured(text)]
         elif wanted != text:
             path.write_text(wanted)
     if args.check and stale:
