@@ -12,6 +12,7 @@ its block between ``<!-- measured:NAME -->`` and ``<!-- /measured -->``.
 """
 
 import datetime
+import json
 import math
 import os
 import platform
@@ -77,6 +78,11 @@ def seconds(t: float) -> str:
     return f"{t * 1e3:.3g} ms" if t < 1.0 else f"{t:.3g} s"
 
 
+def num(x: float) -> str:
+    """Two significant digits, never in e-notation (142 stays 142)."""
+    return f"{x:.{max(0, 1 - math.floor(math.log10(abs(x))))}f}" if x else "0"
+
+
 def measured_on() -> str:
     """When and where: today's date, the machine and the commit (the times depend on them)."""
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
@@ -88,21 +94,36 @@ def later(a: float, b: float) -> str:
     return "later" if a > b else "sooner"
 
 
-def transient_blocks(log=print) -> dict[str, str]:
+def transient_runs(record: Path, resume: bool = False, log=print) -> dict:
+    """Every stop of RECONNECT, LINE_NODES and STIFF, one after another, by name. Each result
+    goes to ``record`` (JSON) as soon as it ends, with when and where the runs began; with
+    ``resume`` the stops already in ``record`` with the same scene are not run again (a run
+    killed half-way goes on from there)."""
+    stops = {name: (scene_file, overrides) for name, (_, scene_file, overrides) in RECONNECT.items()}
+    stops |= {f"line{n}": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": n, "mesh.ny": 1}) for n in LINE_NODES}
+    stops["stiff"] = ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, **STIFF})
+    done = json.loads(record.read_text()) if resume and record.is_file() else {"when": measured_on(), "runs": {}}
+    for name, (scene_file, overrides) in stops.items():
+        kept = done["runs"].get(name)
+        if kept and kept["scene"] == [scene_file, overrides]:
+            continue
+        done["runs"][name] = {"scene": [scene_file, overrides], **stop(scene_file, overrides)}
+        log(f"{name}: {done['runs'][name]}")
+        record.parent.mkdir(parents=True, exist_ok=True)
+        record.write_text(json.dumps(done, indent=1) + "\n")
+    return done
+
+
+def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str, str]:
     """The blocks of README.md's transient section: ``reconnect`` (the table and what it
     says), ``reconnect_mesh`` (line contacts of several meshes), ``transient_speed`` (CPU
-    times). Runs every stop of RECONNECT, LINE_NODES and STIFF, one after another."""
-    when = measured_on()
-    runs = {}
-    for name, (label, scene_file, overrides) in RECONNECT.items():
-        runs[name] = stop(scene_file, overrides)
-        log(f"{name}: {runs[name]}")
-    lines = {n: stop("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": n, "mesh.ny": 1}) for n in LINE_NODES}
-    log(f"line contacts: {lines}")
-    stiff = stop("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, **STIFF})
-    log(f"F = 20 N: {stiff}")
+    times), from ``transient_runs``."""
+    done = transient_runs(record, resume, log)
+    when, runs = done["when"], done["runs"]
+    lines = {n: runs[f"line{n}"] for n in LINE_NODES}
+    stiff = runs["stiff"]
 
-    rows = [f"| {label} | {runs[name]['film'] * 1e6:.2g} µm | {seconds(runs[name]['reconnect'])} | "
+    rows = [f"| {label} | {num(runs[name]['film'] * 1e6)} µm | {seconds(runs[name]['reconnect'])} | "
             f"{runs[name]['steps']} ({runs[name]['rejected']}) |" for name, (label, _, _) in RECONNECT.items()]
     r = {name: run["reconnect"] for name, run in runs.items()}
     reconnect = "\n".join([
@@ -114,7 +135,7 @@ def transient_blocks(log=print) -> dict[str, str]:
         "|---|---|---|---|",
         *rows,
         "",
-        f"Ten times the viscosity waits {r['grease_100'] / r['grease']:.2g} times longer (10 → 100 Pa s); "
+        f"Ten times the viscosity waits {num(r['grease_100'] / r['grease'])} times longer (10 → 100 Pa s); "
         f"the lighter 1 N load reconnects {later(r['grease_1N'], r['grease'])} than 5 N, the larger radius "
         f"{later(r['grease_R50'], r['grease'])} than 10 mm, and the 0.1 Pa s oil at 101 × 101 nodes "
         f"{later(r['table1_101'], r['table1'])} than at 51 × 51.",
@@ -126,15 +147,15 @@ def transient_blocks(log=print) -> dict[str, str]:
 
     def cost(run):
         return (f"{run['steps']} steps, {run['rejected']} rejected, {run['solves']} coupled solves, "
-                f"{run['cpu'] / run['solves'] * 1e3:.2g} ms each")
+                f"{num(run['cpu'] / run['solves'] * 1e3)} ms each")
 
     t1, t101, line = runs["table1"], runs["table1_101"], lines[51]
     speed = (f"Speed (CPU time of one process with one BLAS thread, {when}): the Table 1 stop from 1 m/s to "
-             f"rest and on for {OIL:g} s takes **{t1['cpu']:.2g} s at 51²** ({cost(t1)}), **{t101['cpu']:.2g} s at "
-             f"101²** ({cost(t101)}), {line['cpu']:.2g} s as a 51-node line contact ({cost(line)}). A stiffer "
+             f"rest and on for {OIL:g} s takes **{num(t1['cpu'])} s at 51²** ({cost(t1)}), **{num(t101['cpu'])} s at "
+             f"101²** ({cost(t101)}), {num(line['cpu'])} s as a 51-node line contact ({cost(line)}). A stiffer "
              f"contact needs {'more' if stiff['steps'] > t1['steps'] else 'no more'} steps (each node whose film "
              f"crosses h = 0 is a kink the error control resolves): F = 20 N at 51² took {stiff['steps']} steps "
-             f"(+{stiff['rejected']} rejected), {stiff['cpu']:.2g} s, reconnect_time {seconds(stiff['reconnect'])}.")
+             f"(+{stiff['rejected']} rejected), {num(stiff['cpu'])} s, reconnect_time {seconds(stiff['reconnect'])}.")
     return {"reconnect": reconnect, "reconnect_mesh": reconnect_mesh, "transient_speed": speed}
 
 
@@ -146,17 +167,20 @@ def checked_number(name: str) -> str:
 TARGETS = (0.1, 0.03, 0.01)  # the README's rows: contact resistance within 10, 3, 1 %
 
 
-def accuracy_block(study_file: Path | None = None, log=print) -> str:
+def accuracy_block(study_file: Path | None = None, log=print, keep: Path | None = None) -> str:
     """README.md's accuracy table: the accuracy study of config/accuracy.yaml (deep-merged
     with config/config.yaml's ``accuracy:``, as the workflow runs it), or a study the
     workflow already ran (``study_file``, its results/accuracy/study.nc), through the
-    study's own table code (studies/accuracy.py)."""
+    study's own table code (studies/accuracy.py). A study run here is written to ``keep``."""
     if study_file is None:
         config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
         spec = study_spec(ROOT / "config" / "accuracy.yaml", config.get("accuracy"))
         spec["scene"] = str(ROOT / spec["scene"])
         when = measured_on()
         study = run_study(spec, log=log)
+        if keep is not None:
+            keep.parent.mkdir(parents=True, exist_ok=True)
+            study.to_netcdf(keep)
     else:
         study = xr.load_dataset(study_file)
         written = datetime.datetime.fromtimestamp(study_file.stat().st_mtime, datetime.timezone.utc)
