@@ -87,11 +87,11 @@ def test_the_numbers_the_docs_quote_about_the_default_run_are_current():
 
 # README.md's sections whose results and times scripts/doc_numbers.py writes (between its
 # markers). What they may still spell out by hand: names, the fixed inputs of their scenes,
-# exit codes, the cited equation and the tolerances the tests hold.
+# exit codes, the formulas and the tolerances the tests hold.
 GENERATED_SECTIONS = ("What accuracy costs, and how fast it is", "Time: how long a contact stays open after it stops")
 FIXED = ("Table 1", "Figs. 3–11", "51×51", "51 × 51", "1 m/s", "(1 − cos 2πft)", "t = 0", "(default 2)",
          "default 10⁻³", "10 Ω by default", "exits 3", "exit 2", "BDF2", "BDF1", "docs/physics.md section 14", "docs/physics.md section 17",
-         "h₀^(−1/2) = h_i^(−1/2) + w′t/(6√2 πμR^(3/2))", "within 1 %", "to 10⁻⁵", "order ≈ 2", "10⁻¹²", "(2 Hz)")
+         "h₀^(−1/2) = h_i^(−1/2) + w′t/(6√2 πμR^(3/2))", "√(2R h_M)", "within 1 %", "to 10⁻⁵", "order ≈ 2", "10⁻¹²", "(2 Hz)")
 
 
 def typed_numbers(text: str) -> list[str]:
