@@ -11,7 +11,9 @@ result is checked by ``doc_numbers.py --check`` when it is cheap (CHECKED: secon
 its block between ``<!-- measured:NAME -->`` and ``<!-- /measured -->``.
 """
 
+import contextlib
 import datetime
+import io
 import json
 import math
 import os
@@ -154,8 +156,10 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
 
 
 def checked_number(name: str) -> str:
-    """A cheap measured number as README.md prints it (``--check`` compares it within 2 %)."""
-    return f"{stop(*CHECKED[name])['reconnect'] * 1e3:.3g}"
+    """A cheap measured number as README.md prints it (``--check`` compares it within 2 %;
+    the transient's progress lines are kept out of its report)."""
+    with contextlib.redirect_stderr(io.StringIO()):
+        return f"{stop(*CHECKED[name])['reconnect'] * 1e3:.3g}"
 
 
 TARGETS = (0.1, 0.03, 0.01)  # the README's rows: contact resistance within 10, 3, 1 %
