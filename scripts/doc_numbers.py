@@ -1,11 +1,19 @@
 """Write the numbers the docs quote into README.md and results/README.md, so no such number
 is typed by hand: the default run's cases, chunks, figures and cluster submissions, from the
-workflow's own planning (between ``<!-- planned:NAME -->`` and ``<!-- /planned -->``), and
-a few cheap solves (51 x 51, seconds in all) between ``<!-- solved:NAME -->`` and
-``<!-- /solved -->``. ``--check`` only says whether both files are current (exit 1 if
-not); tests/test_docs.py runs it.
+workflow's own planning (between ``<!-- planned:NAME -->`` and ``<!-- /planned -->``), a
+few cheap solves (51 x 51, seconds in all) between ``<!-- solved:NAME -->`` and
+``<!-- /solved -->``, and with ``--runs`` the blocks of long runs (transient stops, the
+accuracy study, their times; scripts/doc_runs.py) between ``<!-- run:NAME -->`` and
+``<!-- /run -->``. ``--check`` only says whether both files are current (exit 1 if not):
+planned numbers exactly, solved ones within 1 %, and of the long runs the cheap results
+(``<!-- measured:NAME -->``, doc_runs.CHECKED) within 2 %; it never reruns a block, and
+never checks a time. tests/test_docs.py runs it.
 
-    .venv/bin/python scripts/doc_numbers.py           # rewrite the numbers
+    .venv/bin/python scripts/doc_numbers.py           # rewrite the planned and solved numbers
+    .venv/bin/python scripts/doc_numbers.py --runs    # and every run block (minutes: one core, by hand)
+    .venv/bin/python scripts/doc_numbers.py --runs --resume   # go on from a killed --runs (bench/out/)
+    .venv/bin/python scripts/doc_numbers.py --runs --accuracy-study results/accuracy/study.nc
+                                                      # the accuracy table from the workflow's study
     .venv/bin/python scripts/doc_numbers.py --check   # are they current?
 """
 
@@ -17,13 +25,17 @@ from pathlib import Path
 
 import yaml
 
+import doc_runs
 from lubecontact.model.solve import solve
 from lubecontact.scene import load_scene
 from lubecontact.studies import figure_grids, transient_cases
+from lubecontact.studies.sweep import sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 FILES = [ROOT / "README.md", ROOT / "results" / "README.md"]
 MARK = re.compile(r"<!-- (planned|solved):(\w+) -->(.*?)<!-- /(?:planned|solved) -->", re.S)
+RUN = re.compile(r"<!-- run:(\w+) -->\n(.*?)\n<!-- /run -->", re.S)
+MEASURED = re.compile(r"<!-- measured:(\w+) -->(.*?)<!-- /measured -->", re.S)
 TABLE1 = ROOT / "config" / "scenes" / "table1.yaml"
 # solved numbers: name -> overrides of Table 1 (51 x 51, F = 5 N); the contact resistance, ohm
 SOLVED = {
@@ -34,7 +46,19 @@ SOLVED = {
        for tag, sigma in (("s025", 0.25e-6), ("s1", 1e-6), ("s2", 2e-6))},
     **{f"{name}_10": {"operating.speed": 10.0, "roughness.surface": f"../surfaces/{name}.asc"}
        for name in ("ground", "honed")},
+    # unequal roughness: all of it on the block (31 x 15, 1 m/s)
+    **{f"split_{tag}": {"operating.speed": 1.0, "mesh.nx": 31, "mesh.ny": 15, "roughness.split": split}
+       for tag, split in (("05", 0.5), ("1", 1.0))},
 }
+# solved fractions: name -> overrides of Table 1 (51 x 51 unless said); the fluid load fraction
+FRACTION = {
+    "fraction_slow": {"operating.speed": 1e-4},
+    "fraction_001": {"operating.speed": 0.01},
+    "fold_cold": {"operating.speed": 0.0158},
+    **{f"{name}_fraction": overrides for name, overrides in SOLVED.items() if name.startswith("split_")},
+}
+# the fold from below: a sweep along the figures' speeds (config/figures/fig04.yaml) up to this one
+FOLD = 0.0158
 PAPER = [f"fig{n:02d}" for n in range(3, 12)]
 
 
@@ -56,7 +80,7 @@ def numbers() -> dict[str, str]:
     profile = yaml.safe_load((ROOT / "workflow" / "profiles" / "slurm" / "config.yaml").read_text())
     per_submission = profile["group-components"]["solve"]
     return {
-        **{name: None for name in SOLVED},  # solved on demand (solved_numbers)
+        **{name: None for name in [*SOLVED, *FRACTION, "fold_swept"]},  # solved on demand (solved_number)
         "paper_cases": str(len(paper_cases)),
         "paper_chunks": str(len(paper_chunks)),
         "cases": str(len(all_cases)),
@@ -76,10 +100,17 @@ def shown(ohm: float) -> str:
 
 
 def solved_number(name: str) -> str:
-    ds = solve(load_scene(TABLE1, SOLVED[name]))
+    if name == "fold_swept":
+        fig04 = figure_grids.read_yaml(ROOT / "config" / "figures" / "fig04.yaml")["speeds"]
+        speeds = [u for u in figure_grids.log_speeds(fig04["from"], fig04["to"], fig04["per_decade"]) if u <= FOLD]
+        ds = sweep(load_scene(TABLE1), speeds, progress=False).sel(speed=FOLD)
+    else:
+        ds = solve(load_scene(TABLE1, SOLVED.get(name) or FRACTION[name]))
     if int(ds["converged"]) != 1:
         raise RuntimeError(f"{name}: the solve did not converge; no number is quoted from it")
-    return shown(float(ds["contact_resistance"]))
+    if name in SOLVED:
+        return shown(float(ds["contact_resistance"]))
+    return f"{float(ds['fluid_load_fraction']):.3g}"
 
 
 def current(text: str, values: dict) -> str:
@@ -96,28 +127,82 @@ def current(text: str, values: dict) -> str:
 
 def _same(kind: str, old: str, new: str) -> bool:
     """A planned number exactly; a solved one within 1 % (round-off of another BLAS may move
-    its last printed digit)."""
+    its last printed digit); a measured one within 2 % (a transient's steps may fall
+    differently)."""
     if kind == "planned" or old == new:
         return old == new
     try:
-        return math.isclose(float(old), float(new), rel_tol=1e-2)
+        return math.isclose(float(old), float(new), rel_tol=2e-2 if kind == "measured" else 1e-2)
     except ValueError:
         return False
+
+
+# the measurements of the last --runs (git-ignored): --resume goes on from them
+RECORD = ROOT / "bench" / "out" / "doc_runs.json"
+STUDY = ROOT / "bench" / "out" / "doc_runs_study.nc"
+
+
+def run_blocks(accuracy_study: Path | None, resume: bool) -> dict[str, str]:
+    """Every block of the long runs by name (scripts/doc_runs.py), run now (with ``resume``,
+    the stops in RECORD and the study in STUDY are kept)."""
+    blocks = doc_runs.transient_blocks(RECORD, resume, progress)
+    if accuracy_study is None and resume and STUDY.is_file():
+        accuracy_study = STUDY
+    return {**blocks, "accuracy": doc_runs.accuracy_block(accuracy_study, progress, keep=STUDY)}
+
+
+def progress(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
+
+
+def with_runs(text: str, blocks: dict[str, str]) -> str:
+    def fill(match):
+        name = match.group(1)
+        if name not in blocks:
+            raise KeyError(f"unknown run block {name!r}; known: {', '.join(blocks)}")
+        return f"<!-- run:{name} -->\n{blocks[name]}\n<!-- /run -->"
+
+    return RUN.sub(fill, text)
+
+
+def stale_measured(text: str) -> list[str]:
+    """The cheap results of the long runs (doc_runs.CHECKED) that a run now does not reproduce."""
+    stale = []
+    for name, old in MEASURED.findall(text):
+        if name in doc_runs.CHECKED:
+            new = doc_runs.checked_number(name)
+            if not _same("measured", old, new):
+                stale.append(f"{name} = {old} (now {new})")
+    return stale
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="exit 1 if a quoted number is not current")
+    parser.add_argument("--runs", action="store_true", help="also rerun the long runs and rewrite their blocks (minutes)")
+    parser.add_argument("--resume", action="store_true", help="with --runs: keep the runs of the last --runs "
+                        f"({RECORD.relative_to(ROOT)}, {STUDY.relative_to(ROOT)}) and run only what is missing")
+    parser.add_argument("--accuracy-study", type=Path, metavar="STUDY_NC",
+                        help="with --runs: take the accuracy study from this file (the workflow's "
+                             "results/accuracy/study.nc) instead of running it")
     args = parser.parse_args(argv)
+    if args.check and args.runs:
+        parser.error("--check never reruns the long runs: give --check or --runs")
+    if (args.accuracy_study or args.resume) and not args.runs:
+        parser.error("--accuracy-study and --resume go with --runs")
+    if args.accuracy_study and not args.accuracy_study.is_file():
+        parser.error(f"--accuracy-study {args.accuracy_study}: no such file")
     values = numbers()
+    blocks = run_blocks(args.accuracy_study, args.resume) if args.runs else None
     stale = []
     for path in FILES:
         text = path.read_text()
-        wanted = current(text, values)
+        wanted = current(with_runs(text, blocks) if blocks else text, values)
         if args.check:
             stale += [f"{path.relative_to(ROOT)}: {name} = {old} (now {new})"
                       for (kind, name, old), (_, _, new) in zip(MARK.findall(text), MARK.findall(wanted))
                       if not _same(kind, old, new)]
+            stale += [f"{path.relative_to(ROOT)}: {line}" for line in stale_measured(text)]
         elif wanted != text:
             path.write_text(wanted)
     if args.check and stale:

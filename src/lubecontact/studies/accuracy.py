@@ -335,6 +335,23 @@ def _pct(x: float) -> str:
     return f"{100 * x:.2g} %" if x >= 1e-4 else f"{100 * x:.1e} %"
 
 
+def cost_table(table: xr.Dataset, quantities: Sequence[str], targets: Sequence[float]) -> list[str]:
+    """Markdown rows of what each target error costs: per quantity and target, at each speed
+    the cheapest square mesh that reaches it and its solve time (README.md quotes these
+    rows, written by scripts/doc_numbers.py)."""
+    speeds = table["speed"].values
+    header = "| quantity | target | " + " | ".join(f"U = {s:g} m/s ({table['regime'].values[i]})" for i, s in enumerate(speeds)) + " |"
+    lines = [header, "|" + "---|" * (2 + len(speeds))]
+    for q in quantities:
+        for target in targets:
+            cells = []
+            for i in range(len(speeds)):
+                found = cheapest(table, q, i, target)
+                cells.append(f"{found[0]}², {found[1]:.3g} s" if found else "finer than the ladder")
+            lines.append(f"| {QUANTITIES[q].label} | {_pct(target)} | " + " | ".join(cells) + " |")
+    return lines
+
+
 def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -> str:
     """The error budget as Markdown: what each target error costs, then per speed the mesh
     ladder (mesh -> error -> time), the extrapolated values, domain and tolerance checks."""
@@ -351,15 +368,7 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
              "alone. The domain and tolerance tables of each speed add their own (domain table, row 1 = the automatic domain: "
              "its truncation error at that speed).", ""]
     lines += ["## Cheapest square mesh for a target error (nodes a side, solve time)", ""]
-    header = "| quantity | target | " + " | ".join(f"U = {s:g} m/s ({table['regime'].values[i]})" for i, s in enumerate(speeds)) + " |"
-    lines += [header, "|" + "---|" * (2 + len(speeds))]
-    for q in quantities:
-        for target in targets:
-            cells = []
-            for i in range(len(speeds)):
-                found = cheapest(table, q, i, target)
-                cells.append(f"{found[0]}², {found[1]:.3g} s" if found else "finer than the ladder")
-            lines.append(f"| {QUANTITIES[q].label} | {_pct(target)} | " + " | ".join(cells) + " |")
+    lines += cost_table(table, quantities, targets)
     for i, speed in enumerate(speeds):
         lines += ["", f"## U = {speed:g} m/s ({table['regime'].values[i]}, fluid carries "
                   f"{100 * table['fluid_load_fraction'].values[i, finest]:.3g} % of the load on the finest mesh)", ""]

@@ -1,0 +1,215 @@
+"""The long runs behind the numbers README.md quotes (scripts/doc_numbers.py calls this):
+transient stops of the Table 1 contact and its oil and grease variants (film, reconnect
+time, steps, their mesh dependence and CPU time) and the accuracy study of
+config/accuracy.yaml (the cheapest mesh for a target error, observed orders).
+
+Each function returns the text of one block ``<!-- run:NAME -->…<!-- /run -->`` of
+README.md; doc_numbers.py writes them with ``--runs`` (minutes: every transient below one
+after another, then the accuracy study). Times are CPU or wall times of this machine, so
+every block that quotes one says when and where it was measured; no test checks them. A
+result is checked by ``doc_numbers.py --check`` when it is cheap (CHECKED: seconds), inside
+its block between ``<!-- measured:NAME -->`` and ``<!-- /measured -->``.
+"""
+
+import contextlib
+import datetime
+import io
+import json
+import math
+import os
+import platform
+import subprocess
+import time
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+import yaml
+
+from lubecontact.scene import load_scene
+from lubecontact.studies.accuracy import accuracy_table, cost_table, run_study
+from lubecontact.studies.accuracy_plan import study_spec
+from lubecontact.unsteady.transient import transient
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENES = ROOT / "config" / "scenes"
+# A stop from 1 m/s over 1 ms (motion.ramp's default), reconnected at 2 x the resting resistance
+TABLE1_STOP = {"motion.kind": "stop", "motion.speed": 1.0}
+OIL = 0.1  # s simulated: the oils reconnect within milliseconds
+GREASE = 1000.0  # s simulated: the greases within seconds
+
+# name -> (row label, scene file, overrides): the reconnect table
+RECONNECT = {
+    "table1": ("0.1 Pa s oil (Table 1)", "table1.yaml", {**TABLE1_STOP, "motion.duration": OIL}),
+    "table1_101": ("0.1 Pa s oil (Table 1), 101 × 101 nodes", "table1.yaml",
+                   {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": 101, "mesh.ny": 101}),
+    "vg100": ("ISO VG 100 mineral oil, 0.087 Pa s (`stop_hydrocarbon_oil.yaml`)", "stop_hydrocarbon_oil.yaml", {"motion.duration": OIL}),
+    "grease": ("grease-like, 10 Pa s (`stop_grease.yaml`)", "stop_grease.yaml", {"motion.duration": GREASE}),
+    "grease_1N": ("grease-like, 10 Pa s, F = 1 N", "stop_grease.yaml", {"motion.duration": GREASE, "operating.force": 1.0}),
+    "grease_R50": ("grease-like, 10 Pa s, R = 50 mm", "stop_grease.yaml", {"motion.duration": GREASE, "geometry.radius": 0.05}),
+    # at 51 x 51 this one takes minutes (ms steps at ~0.5 s each near contact): a line contact
+    "grease_smooth": ("grease-like, 10 Pa s, σ = 0.1 µm (line contact, 51 × 1)", "stop_grease.yaml",
+                      {"motion.duration": GREASE, "roughness.sigma": 0.1e-6, "mesh.ny": 1}),
+    "grease_100": ("100 Pa s (a grease's apparent viscosity near rest)", "stop_grease.yaml",
+                   {"motion.duration": GREASE, "lubricant.viscosity": 100.0}),
+}
+LINE_NODES = (31, 41, 51, 75, 101)  # Table 1 as a line contact (ny = 1): the mesh dependence
+# cheap enough for the test (seconds): name -> the run whose reconnect time it is
+CHECKED = {"line31": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": 31, "mesh.ny": 1})}
+
+
+def stop(scene_file: str, overrides: dict) -> dict:
+    """One transient run: reconnect time (s), film at the initial speed (m), steps, rejected
+    steps, coupled solves, CPU seconds, converged."""
+    scene = load_scene(SCENES / scene_file, overrides)
+    cpu = time.process_time()
+    ds = transient(scene, progress=False)
+    cpu = time.process_time() - cpu
+    if int(ds["converged"]) != 1:
+        raise RuntimeError(f"{scene_file} {overrides}: the transient did not converge; no number is quoted from it")
+    return {"reconnect": float(ds["reconnect_time"]), "film": float(ds["min_film_thickness"].values[0]),
+            "steps": int(ds["steps"]), "rejected": int(ds["rejected_steps"]),
+            "solves": int(ds["coupled_solves"]), "cpu": cpu}
+
+
+def seconds(t: float) -> str:
+    """A time as the docs print it: 3 significant digits, in ms below 1 s."""
+    if not math.isfinite(t):
+        return "not within the run"
+    return f"{t * 1e3:.3g} ms" if t < 1.0 else f"{t:.3g} s"
+
+
+def num(x: float) -> str:
+    """Two significant digits, never in e-notation (142 stays 142)."""
+    return f"{x:.{max(0, 1 - math.floor(math.log10(abs(x))))}f}" if x else "0"
+
+
+def measured_on() -> str:
+    """When and where: today's date, the machine and the commit (the times depend on them)."""
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    return (f"measured {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d} on {os.cpu_count()} "
+            f"{platform.machine()} CPUs (load average {os.getloadavg()[0]:.1f} at the start), commit {commit or 'unknown'}")
+
+
+def later(a: float, b: float) -> str:
+    return "later" if a > b else "sooner"
+
+
+def transient_runs(record: Path, resume: bool = False, log=print) -> dict:
+    """Every stop of RECONNECT and LINE_NODES, one after another, by name. Each result
+    goes to ``record`` (JSON) as soon as it ends, with when and where the runs began; with
+    ``resume`` the stops already in ``record`` with the same scene are not run again (a run
+    killed half-way goes on from there)."""
+    stops = {name: (scene_file, overrides) for name, (_, scene_file, overrides) in RECONNECT.items()}
+    stops |= {f"line{n}": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": n, "mesh.ny": 1}) for n in LINE_NODES}
+    done = json.loads(record.read_text()) if resume and record.is_file() else {"when": measured_on(), "runs": {}}
+    for name, (scene_file, overrides) in stops.items():
+        kept = done["runs"].get(name)
+        if kept and kept["scene"] == [scene_file, overrides]:
+            continue
+        done["runs"][name] = {"scene": [scene_file, overrides], **stop(scene_file, overrides)}
+        log(f"{name}: {done['runs'][name]}")
+        record.parent.mkdir(parents=True, exist_ok=True)
+        record.write_text(json.dumps(done, indent=1) + "\n")
+    return done
+
+
+def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str, str]:
+    """The blocks of README.md's transient section: ``reconnect`` (the table and what it
+    says), ``reconnect_mesh`` (line contacts of several meshes), ``transient_speed`` (CPU
+    times), from ``transient_runs``."""
+    done = transient_runs(record, resume, log)
+    when, runs = done["when"], done["runs"]
+    lines = {n: runs[f"line{n}"] for n in LINE_NODES}
+
+    rows = [f"| {label} | {num(runs[name]['film'] * 1e6)} µm | {seconds(runs[name]['reconnect'])} | "
+            f"{runs[name]['steps']} ({runs[name]['rejected']}) |" for name, (label, _, _) in RECONNECT.items()]
+    r = {name: run["reconnect"] for name, run in runs.items()}
+    reconnect = "\n".join([
+        "Measured (`scripts/doc_numbers.py --runs`, 51 × 51 nodes unless noted; stop from 1 m/s over 1 ms, "
+        "reconnected at 2 × the resting resistance; steps of the whole run, "
+        f"{OIL:g} s after the stop for the oils, {GREASE:g} s for the greases):",
+        "",
+        "| contact (Table 1 unless noted) | film at 1 m/s | reconnect_time | steps (rejected) |",
+        "|---|---|---|---|",
+        *rows,
+        "",
+        f"Ten times the viscosity waits {num(r['grease_100'] / r['grease'])} times longer (10 → 100 Pa s); "
+        f"the lighter 1 N load reconnects {later(r['grease_1N'], r['grease'])} than 5 N, the larger radius "
+        f"{later(r['grease_R50'], r['grease'])} than 10 mm, and the 0.1 Pa s oil at 101 × 101 nodes "
+        f"{later(r['table1_101'], r['table1'])} than at 51 × 51.",
+    ])
+    mesh = ", ".join(seconds(lines[n]["reconnect"]) if n != 31 else
+                     f"<!-- measured:line31 -->{lines[n]['reconnect'] * 1e3:.3g}<!-- /measured --> ms" for n in LINE_NODES[:-1])
+    reconnect_mesh = (f"The reconnect time depends on the mesh: {mesh} and {seconds(lines[LINE_NODES[-1]]['reconnect'])} "
+                      f"for Table 1 as a {', '.join(f'{n}-' for n in LINE_NODES[:-1])} and {LINE_NODES[-1]}-node line contact.")
+
+    def cost(run):
+        return (f"{run['steps']} steps, {run['rejected']} rejected, {run['solves']} coupled solves, "
+                f"{num(run['cpu'] / run['solves'] * 1e3)} ms each")
+
+    t1, t101, line = runs["table1"], runs["table1_101"], lines[51]
+    speed = (f"Speed (CPU time of one process with one BLAS thread, {when}): the Table 1 stop from 1 m/s to "
+             f"rest and on for {OIL:g} s takes **{num(t1['cpu'])} s at 51²** ({cost(t1)}), **{num(t101['cpu'])} s at "
+             f"101²** ({cost(t101)}), {num(line['cpu'])} s as a 51-node line contact ({cost(line)}).")
+    return {"reconnect": reconnect, "reconnect_mesh": reconnect_mesh, "transient_speed": speed}
+
+
+def checked_number(name: str) -> str:
+    """A cheap measured number as README.md prints it (``--check`` compares it within 2 %;
+    the transient's progress lines are kept out of its report)."""
+    with contextlib.redirect_stderr(io.StringIO()):
+        return f"{stop(*CHECKED[name])['reconnect'] * 1e3:.3g}"
+
+
+TARGETS = (0.1, 0.03, 0.01)  # the README's rows: contact resistance within 10, 3, 1 %
+
+
+def accuracy_block(study_file: Path | None = None, log=print, keep: Path | None = None) -> str:
+    """README.md's accuracy table: the accuracy study of config/accuracy.yaml (deep-merged
+    with config/config.yaml's ``accuracy:``, as the workflow runs it), or a study the
+    workflow already ran (``study_file``, its results/accuracy/study.nc), through the
+    study's own table code (studies/accuracy.py). A study run here is written to ``keep``."""
+    if study_file is None:
+        config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+        spec = study_spec(ROOT / "config" / "accuracy.yaml", config.get("accuracy"))
+        spec["scene"] = str(ROOT / spec["scene"])
+        when = measured_on()
+        study = run_study(spec, log=log)
+        study.attrs["measured"] = when
+        if keep is not None:
+            keep.parent.mkdir(parents=True, exist_ok=True)
+            study.to_netcdf(keep)
+    else:
+        study = xr.load_dataset(study_file)
+        written = datetime.datetime.fromtimestamp(study_file.stat().st_mtime, datetime.timezone.utc)
+        when = study.attrs.get("measured") or f"timed by the run that wrote {study_file.name}, {written:%Y-%m-%d}"
+    table = accuracy_table(study)
+    q = "contact_resistance"
+    orders = table[f"{q}_order"].values
+    meshes = list(table["mesh"].values)
+    speeds = table["speed"].values
+    paper = table[f"{q}_error"].values[:, meshes.index(51)] if 51 in meshes else None
+    tolerance = ""
+    if "tolerance" in table.dims:
+        default = float(yaml.safe_load(study.attrs["scene"])["solver"]["tolerance"])
+        values = list(table["tolerance"].values)
+        if default in values:
+            change = np.nanmax(table[f"tolerance_{q}_change"].values[:, values.index(default)])
+            tolerance = (f" Tightening the solver tolerance from its default ({default:g}) to {min(values):g} moves "
+                         f"the resistance by at most {100 * change:.2g} %.")
+    domain = ""
+    if "domain" in table.dims:
+        scales = list(table["domain"].values)
+        if 1.0 in scales:
+            change = np.nanmax(table[f"domain_{q}_change"].values[:, scales.index(1.0)])
+            domain = (f" Lengthening the automatic domain up to {max(scales):g}× moves it by at most "
+                      f"{100 * change:.2g} %.")
+    rows = cost_table(table, [q], TARGETS)
+    text = [f"Read off, for the Table 1 contact ({when}):", "", *rows, "",
+            f"The observed order of ln R is {np.nanmin(orders):.2g}–{np.nanmax(orders):.2g}."
+            + (" The 51² mesh of the paper's figures is off by "
+               + ", ".join(f"{100 * e:.2g} %" for e in paper) + " at "
+               + ", ".join(f"{s:g}" for s in speeds) + " m/s." if paper is not None else "")
+            + tolerance + domain]
+    return "\n".join(text)
