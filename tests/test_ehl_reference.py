@@ -72,10 +72,10 @@ def test_reference_reproduces_the_section_5_table(g_e, table_h_min):
     assert h_min == pytest.approx(table_h_min, rel=0.01)
 
 
-def coupled_films(speed, method="nested"):
+def coupled_films(speed, method="nested", nodes=401):
     ds = lc.solve(lc.load_scene(TABLE1, {
         "effects.asperity_contact": False, "operating.speed": speed,
-        "mesh.ny": 1, "mesh.nx": 401, "mesh.x_min": -4e-4, "mesh.x_max": 1e-4, "solver.method": method,
+        "mesh.ny": 1, "mesh.nx": nodes, "mesh.x_min": -4e-4, "mesh.x_max": 1e-4, "solver.method": method,
     }))
     return ds["converged"].item(), ds["central_film_thickness"].item(), ds["min_film_thickness"].item()
 
@@ -102,9 +102,10 @@ def test_coupled_solver_matches_the_reference(m):
 @pytest.mark.parametrize("m", MOES_M)
 def test_one_newton_matches_the_reference_where_the_nested_solver_fails(m):
     """solver.method: newton (docs/physics.md section 20) on the same contacts: converged at
-    every M, central and minimum film within 3 % of the reference solver."""
+    every M, central and minimum film within 3 % of the reference solver. At M = 50 the exit
+    constriction needs 801 nodes: on 401 the minimum film is 6.5 % low (0.5 % on 801)."""
     speed, film = reference(m)
-    converged, central, minimum = coupled_films(speed, "newton")
+    converged, central, minimum = coupled_films(speed, "newton", 801 if m >= 50 else 401)
     assert converged == 1
     assert central == pytest.approx(film.central_film, rel=0.03)
     assert minimum == pytest.approx(film.min_film, rel=0.03)

@@ -445,8 +445,31 @@ def at_force(model: Model, force: float) -> Model:
         scene, operating=dataclasses.replace(scene.operating, force=float(force))))
 
 
+def continued(model: Model, fraction: float, lin: Linearisation, tolerance: float):
+    """From ``lin``, converged under ``fraction`` of the force, up to the whole force in
+    steps that double the load, each step halved (up to CONTINUATION_HALVINGS times) where
+    Newton fails on it: (linearisation, iterations, stiffness, failure)."""
+    force, limit = model.scene.operating.force, model.scene.solver.max_iterations
+    total, stiffness, failure = 0, None, ""
+    while fraction < 1.0:
+        target = min(1.0, 2.0 * fraction)
+        for _ in range(CONTINUATION_HALVINGS + 1):
+            step_model = model if target == 1.0 else at_force(model, force * target)
+            it = Iterate(lin.state.fluid_pressure, lin.state.delta, lin.state.z)
+            trial, iterations, stiffness, failure = newton(step_model, it, tolerance, limit)
+            total += iterations
+            if not failure:
+                lin, fraction = trial, target
+                break
+            target = 0.5 * (fraction + target)
+        if failure:
+            return trial, total, stiffness, f"load continuation stopped at {fraction:.3g} of the force: {failure}"
+    return lin, total, stiffness, ""
+
+
 def solve_level(model: Model, start: Iterate, tolerance: float):
-    """Newton from ``start``, then, where it fails from a cold start, load continuation:
+    """Newton from ``start``, then, where it fails from a cold start, load continuation from
+    the largest of 1/2, 1/4, ... of the force at which a cold start converges:
     (linearisation, iterations, stiffness, failure)."""
     limit = model.scene.solver.max_iterations
     result = newton(model, start, tolerance, limit)
@@ -456,18 +479,10 @@ def solve_level(model: Model, start: Iterate, tolerance: float):
     for halvings in range(1, CONTINUATION_HALVINGS + 1):
         fraction = 2.0**-halvings
         lighter = at_force(model, force * fraction)
-        lin, iterations, stiffness, failure = newton(lighter, cold_start(lighter), tolerance, limit)
-        if failure:
-            continue
-        total = iterations
-        while fraction < 1.0 and not failure:
-            fraction = min(1.0, 2.0 * fraction)
-            step_model = model if fraction == 1.0 else at_force(model, force * fraction)
-            it = Iterate(lin.state.fluid_pressure, lin.state.delta, lin.state.z)
-            lin, iterations, stiffness, failure = newton(step_model, it, tolerance, limit)
-            total += iterations
+        lin, iterations, _, failure = newton(lighter, cold_start(lighter), tolerance, limit)
         if not failure:
-            return lin, total, stiffness, ""
+            lin, more, stiffness, failure = continued(model, fraction, lin, tolerance)
+            return lin, iterations + more, stiffness, failure
     return result
 
 
