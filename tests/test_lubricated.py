@@ -165,6 +165,14 @@ def test_a_failed_force_balance_is_written_as_not_converged(monkeypatch):
         raise SolveError("forced failure for the test", state)
 
     monkeypatch.setattr(coupling, "balance_force", failing)
+    # one Newton takes over from the failed nested solve, and the notes say so
+    ds = lc.solve(scene(**{"mesh.nx": 21, "mesh.ny": 11}))
+    assert ds["converged"].item() == 1
+    assert "the nested solver stopped" in ds.attrs["notes"] and "forced failure for the test" in ds.attrs["notes"]
+    # where Newton fails too, the nested solve's failure is what is written
+    from lubecontact.model import monolithic_newton
+
+    monkeypatch.setattr(monolithic_newton, "newton", lambda model, start, tol, limit: (None, 0, None, "forced as well"))
     ds = lc.solve(scene(**{"mesh.nx": 21, "mesh.ny": 11}))
     assert ds["converged"].item() == 0
     assert "NOT CONVERGED: forced failure" in ds.attrs["notes"]

@@ -467,13 +467,13 @@ def continued(model: Model, fraction: float, lin: Linearisation, tolerance: floa
     return lin, total, stiffness, ""
 
 
-def solve_level(model: Model, start: Iterate, tolerance: float):
-    """Newton from ``start``, then, where it fails from a cold start, load continuation from
-    the largest of 1/2, 1/4, ... of the force at which a cold start converges:
-    (linearisation, iterations, stiffness, failure)."""
+def solve_level(model: Model, start: Iterate, tolerance: float, continuation: bool = True):
+    """Newton from ``start``, then, where it fails and ``continuation`` allows, load
+    continuation from the largest of 1/2, 1/4, ... of the force at which a cold start
+    converges: (linearisation, iterations, stiffness, failure)."""
     limit = model.scene.solver.max_iterations
     result = newton(model, start, tolerance, limit)
-    if not result[3]:
+    if not result[3] or not continuation:
         return result
     force = model.scene.operating.force
     for halvings in range(1, CONTINUATION_HALVINGS + 1):
@@ -486,7 +486,7 @@ def solve_level(model: Model, start: Iterate, tolerance: float):
     return result
 
 
-def level_solution(model: Model, initial: WarmStart | None, tolerance: float):
+def level_solution(model: Model, initial: WarmStart | None, tolerance: float, continuation: bool = True):
     """(linearisation, iterations, stiffness, failure) on this mesh, started from a warm
     start on it, else from the solution on the coarser mesh (nested), else cold."""
     start = warm_iterate(model, initial)
@@ -500,17 +500,18 @@ def level_solution(model: Model, initial: WarmStart | None, tolerance: float):
                 start = transferred(coarse, model, Iterate(state.fluid_pressure, state.delta, state.z))
         if start is None:
             start = cold_start(model)
-    return solve_level(model, start, tolerance)
+    return solve_level(model, start, tolerance, continuation)
 
 
-def monolithic_solve(model: Model, initial: WarmStart | None = None,
-                     tolerance: float | None = None) -> tuple[State, Diagnostics]:
+def monolithic_solve(model: Model, initial: WarmStart | None = None, tolerance: float | None = None,
+                     continuation: bool = True) -> tuple[State, Diagnostics]:
     """Solve the coupled steady contact by one semismooth Newton (module docstring); the
-    same (State, Diagnostics) as model/coupling.coupled_solve. A failure is reported, never
-    silent: ``converged`` False with the message, and the last state evaluated."""
+    same (State, Diagnostics) as model/coupling.coupled_solve. ``continuation``: whether a
+    failed Newton may go on by load continuation. A failure is reported, never silent:
+    ``converged`` False with the message, and the last state evaluated."""
     scene = model.scene
     tol = scene.solver.tolerance if tolerance is None else tolerance
-    lin, iterations, stiffness, failure = level_solution(model, initial, tol)
+    lin, iterations, stiffness, failure = level_solution(model, initial, tol, continuation)
     if lin is None:
         raise SolveError(failure)
     state = lin.state
@@ -523,3 +524,27 @@ def monolithic_solve(model: Model, initial: WarmStart | None = None,
         stiffness=None if stiffness is None else -stiffness,
         failure=failure,
     )
+
+
+def finishes(model: Model) -> bool:
+    """Whether one Newton can take over a steady solve of ``model`` (not JFO, not a step)."""
+    return model.scene.effects.cavitation != "jfo" and model.squeeze is None
+
+
+def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
+    """(state, diagnostics, note) of one Newton (no continuation) from a nested solve that
+    stopped without meeting its tolerances, when it converges from there; else the nested
+    solve's own, with an empty note."""
+    if diagnostics.converged or not finishes(model):
+        return state, diagnostics, ""
+    start = WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure)
+    try:
+        finished, newton_diagnostics = monolithic_solve(model, start, continuation=False)
+    except SolveError:
+        return state, diagnostics, ""
+    if not newton_diagnostics.converged:
+        return state, diagnostics, ""
+    why = diagnostics.failure or "its deformation change did not fall below the tolerance"
+    return finished, newton_diagnostics, (
+        f"the nested solver stopped after {diagnostics.iterations} iterations ({why}); one Newton from its last "
+        f"state converged in {newton_diagnostics.iterations} (solver.method newton, docs/physics.md section 20)")

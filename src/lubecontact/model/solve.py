@@ -20,7 +20,7 @@ import time
 from lubecontact.io.case_result import CaseResult
 from lubecontact.model.coupling import WarmStart, coupled_solve
 from lubecontact.model.model import Model
-from lubecontact.model.monolithic_newton import monolithic_solve
+from lubecontact.model.monolithic_newton import finished_by_newton, monolithic_solve
 from lubecontact.model.outputs import point_outputs
 from lubecontact.model.prepare import prepare
 from lubecontact.model.validity import assess, flag_bits
@@ -47,8 +47,12 @@ def solve_case(scene, fields: bool = False, initial: WarmStart | None = None):
     scene, notes = prepared.scene, list(prepared.notes)
     with one_blas_thread():
         model = Model.assemble(scene, contact=prepared.contact)
-        solver = monolithic_solve if scene.solver.method == "newton" else coupled_solve
-        state, diag = solver(model, initial)
+        if scene.solver.method == "newton":
+            state, diag = monolithic_solve(model, initial)
+        else:  # nested, finished by one Newton where it stalls
+            state, diag, finished = finished_by_newton(model, *coupled_solve(model, initial))
+            if finished:
+                notes.append(finished)
     if diag.failure:
         notes.append("NOT CONVERGED: " + diag.failure)
     outputs, output_notes = point_outputs(model, state)
