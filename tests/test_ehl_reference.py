@@ -85,11 +85,9 @@ def failing_today(what):
 
 
 @pytest.mark.parametrize("m", [
-    5, 10,
-    pytest.param(13, marks=failing_today("converged = 0, h_min = 1.1e-22 m: the force balance fails")),
-    pytest.param(20, marks=failing_today("converged = 0, h_min = 1.1e-22 m: the force balance fails")),
-    pytest.param(23, marks=failing_today("ValueError: smooth surfaces need a positive film everywhere")),
-    pytest.param(50, marks=failing_today("converged = 0, h_min = 1.1e-22 m: the force balance fails")),
+    5, 10, 13, 20, 23,  # 13-23: the nested solver stops, one Newton finishes the solve (README "Solvers")
+    pytest.param(50, marks=failing_today("converged, but on 401 nodes the exit constriction's minimum film is "
+                                         "6.5 % below the reference (0.5 % on 801)")),
 ])
 def test_coupled_solver_matches_the_reference(m):
     speed, film = reference(m)

@@ -32,9 +32,9 @@ GREASE = {**QUICK, "mesh.nx": 21, "motion.kind": "oscillation", "motion.amplitud
 CASES = {
     # name: (transient?, scene overrides, what happens today, measured)
     "soft_film_M13": (False, {**SOFT_FILM, "operating.speed": 0.003},
-                      "ValueError: smooth surfaces need a positive film everywhere, after 0.7 s"),
+                      "the nested solver's film closes at a node; one Newton finishes it (converged)"),
     "soft_film_M23": (False, {**SOFT_FILM, "operating.speed": 0.001},
-                      "converged = 0 with h_min = 1.1e-22 m: the force balance fails, after 0.5 s"),
+                      "the nested solver's force balance fails; one Newton finishes it (converged)"),
     "smooth_default_mesh": (False, {"effects.asperity_contact": False, "operating.speed": 0.01},
                             "51 x 51, automatic domain: converged = 0 with h_min = 3.8e-129 m, after 2.5 s"),
     "grease_1_Pa_s": (True, {**GREASE, "lubricant.viscosity": 1.0},
@@ -95,7 +95,14 @@ def outcomes():
     return outcome
 
 
+# converged at default settings since a nested solve that stops is finished by one Newton
+# (model/monolithic_newton.finished_by_newton, docs/physics.md section 20)
+CONVERGED = {"soft_film_M13", "soft_film_M23"}
+
+
 def failing_today(case):
+    if case in CONVERGED:
+        return case
     return pytest.param(case, marks=pytest.mark.xfail(strict=True, reason=f"issue 27: {CASES[case][2]}"))
 
 

@@ -32,6 +32,7 @@ from lubecontact.model.model import Model, SolveError, State
 from lubecontact.model.newton import Backtracking, contact_newton_step, coupled_newton_step
 from lubecontact.numerics.anderson import AndersonMixer
 from lubecontact.numerics.transfer import interpolate_field
+from lubecontact.physics.flow_factors import ClosedFilmError
 
 
 @dataclass
@@ -188,6 +189,7 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
     failure = ""
     iteration = 0
     backtracking = None  # Backtracking of the coupled Newton steps once they stall
+    state = None  # the last state evaluated
     try:
         for iteration in range(1, max_iterations + 1):
             state, stiffness = balance_force(model, delta, z, balance_tol, stiffness, cavitated, reynolds,
@@ -245,6 +247,10 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
         if err.state is None:
             raise
         state, failure = err.state, str(err)
+    except ClosedFilmError as err:  # a smooth film closed at a node: the last state evaluated
+        if state is None:
+            raise SolveError(str(err)) from err
+        failure = str(err)
     reynolds_ok = state.reynolds is None or bool(state.reynolds.converged)
     force_residual = force - state.total_force
     diagnostics = Diagnostics(

@@ -532,19 +532,24 @@ def finishes(model: Model) -> bool:
 
 
 def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
-    """(state, diagnostics, note) of one Newton (no continuation) from a nested solve that
-    stopped without meeting its tolerances, when it converges from there; else the nested
-    solve's own, with an empty note."""
+    """(state, diagnostics, note) where a nested solve stopped without meeting its
+    tolerances: one Newton from its last state (no continuation: cheap), and on a mesh the
+    dense step serves (line contacts, DENSE_NODES) also a cold one with load continuation;
+    the first that converges, with a note saying so. Else the nested solve's own, and an
+    empty note."""
     if diagnostics.converged or not finishes(model):
         return state, diagnostics, ""
-    start = WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure)
-    try:
-        finished, newton_diagnostics = monolithic_solve(model, start, continuation=False)
-    except SolveError:
-        return state, diagnostics, ""
-    if not newton_diagnostics.converged:
-        return state, diagnostics, ""
+    attempts = [("from its last state", WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure), False)]
+    if model.mesh.nx * model.mesh.ny <= DENSE_NODES:
+        attempts.append(("from a cold start", None, True))
     why = diagnostics.failure or "its deformation change did not fall below the tolerance"
-    return finished, newton_diagnostics, (
-        f"the nested solver stopped after {diagnostics.iterations} iterations ({why}); one Newton from its last "
-        f"state converged in {newton_diagnostics.iterations} (solver.method newton, docs/physics.md section 20)")
+    for how, start, continuation in attempts:
+        try:
+            finished, newton_diagnostics = monolithic_solve(model, start, continuation=continuation)
+        except SolveError:
+            continue
+        if newton_diagnostics.converged:
+            return finished, newton_diagnostics, (
+                f"the nested solver stopped after {diagnostics.iterations} iterations ({why}); one Newton {how} "
+                f"converged in {newton_diagnostics.iterations} (solver.method newton, docs/physics.md section 20)")
+    return state, diagnostics, ""

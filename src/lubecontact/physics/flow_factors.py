@@ -41,6 +41,11 @@ H_VALID = 0.5
 _INV_SQRT_2PI = 1.0 / np.sqrt(2.0 * np.pi)
 
 
+class ClosedFilmError(ValueError):
+    """A smooth film (no asperity contact) closed at a node: k = h^3/(12 mu) has no value
+    there. A solver that meets it reports it as not converged (model/coupling.py)."""
+
+
 def _smooth(sigma) -> bool:
     return sigma is None or sigma == 0
 
@@ -118,7 +123,7 @@ def poiseuille_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
     h = np.asarray(h, dtype=float)
     if _smooth(sigma):
         if not np.all(h > 0.0):
-            raise ValueError(
+            raise ClosedFilmError(
                 f"smooth surfaces need a positive film everywhere; min h = {np.min(h):.3g} m "
                 "(the solid bodies interpenetrate without asperity contact)"
             )
