@@ -190,7 +190,9 @@ def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
     upper_slope = (dphi * H_upper**3 + 3.0 * phi * H_upper**2) * (cube / sigma)
     k_valid = poiseuille_coefficient(H_VALID * sigma, sigma, viscosity, flow_factors)
     reference = ndtr(H_VALID) - 0.5
-    H_lower = np.minimum(H, H_VALID)
+    # below H = -40 Phi(H) and its slope are 0 to double precision: clipped there, a film far
+    # out of range (a rejected iterate) cannot overflow the square
+    H_lower = np.clip(H, -40.0, H_VALID)
     share = (ndtr(H_lower) - 0.5) / reference
     share_slope = _INV_SQRT_2PI * np.exp(-0.5 * H_lower**2) / reference
     above = H >= H_VALID
