@@ -52,3 +52,17 @@ def test_a_temperature_chart_keeps_zero_celsius_on_a_linear_axis():
     assert ax.get_xlabel() == "temperature of the oil (\u00b0C)"
     line, = [line for line in ax.get_lines() if line.get_label() == "F = 5 N"]
     assert list(line.get_xdata()) == [0.0, 20.0, 45.0]
+
+
+def test_a_design_chart_title_of_any_length_stays_inside_the_figure():
+    """transient_temperature's title (config/transient.yaml) was cut at 'line contact)': a long
+    title is broken into lines, every character kept, none outside the figure."""
+    title = ("Time to reconnect after a stop from 1 m/s against temperature (Table 1 contact, ISO VG 100 oil, "
+             "line contact)")
+    points = [{"x": t, "series": 5.0, "label": "F = 5 N", "ds": series()} for t in (0.0, 20.0, 45.0)]
+    fig = plots.reconnect_figure(points, key_words("operating.temperature"), unit_label("degC"), title, log_x=False)
+    FigureCanvasAgg(fig).draw()
+    text = fig.axes[0].title
+    assert text.get_text().split("\n\u25b2")[0].replace("\n", " ") == title
+    box, width = text.get_window_extent(), fig.get_window_extent()
+    assert box.x0 >= width.x0 and box.x1 <= width.x1

@@ -15,11 +15,21 @@ Library code: matplotlib's object API, no files read.
 from __future__ import annotations
 
 import math
+import textwrap
 
 import numpy as np
 import yaml
 from matplotlib.figure import Figure
 
+
+
+# A title line of at most this many characters fits the figures' 6.4 in width at 9 pt.
+TITLE_CHARACTERS = 80
+
+
+def wrapped(title: str) -> str:
+    """``title`` broken into lines that fit the figure (a long title is never cut)."""
+    return textwrap.fill(title, TITLE_CHARACTERS)
 
 def _rest_from(ds) -> float:
     """Instant the motion stopped: stop_time + ramp of the stop scene."""
@@ -46,7 +56,7 @@ def stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
     bottom.set_ylabel("minimum film thickness h (\u00b5m)")
     bottom.set_xlabel("time after the stop (s)")
     top.legend(fontsize=7, loc="upper right")
-    top.set_title(title + "\ndotted: 2 \u00d7 resistance at rest; dots: reconnect time", fontsize=9)
+    top.set_title(wrapped(title) + "\ndotted: 2 \u00d7 resistance at rest; dots: reconnect time", fontsize=9)
     return fig
 
 
@@ -80,7 +90,7 @@ def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str,
     ax.set_yscale("log")
     ax.set_xlabel(f"{x_label} ({x_units})")
     ax.set_ylabel("reconnect time (s)")
-    ax.set_title(title + "\n\u25b2 not within the run; \u25bc before the block stopped; red \u00d7 not converged",
+    ax.set_title(wrapped(title) + "\n\u25b2 not within the run; \u25bc before the block stopped; red \u00d7 not converged",
                  fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
