@@ -101,6 +101,8 @@ def test_speed_limit_map_reads_for_any_lubricant_as_mu_u():
     low, high = bar.get_ylim()
     assert product[0].get_ylim() == pytest.approx((0.1 * low, 0.1 * high))  # mu = 0.1 Pa s
     assert "another lubricant" in fig.get_suptitle()
+    cells = [text.get_text() for text in fig.axes[0].texts]
+    assert cells and not any("e+" in cell for cell in cells)  # 140, not 1.4e+02
 
 
 def test_the_paper_models_resistance_axis_says_spots_only():

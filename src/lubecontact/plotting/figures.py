@@ -283,7 +283,7 @@ def render_speed_limit(ds: xr.Dataset, plot: Mapping, title: str = "") -> Figure
         for i in xs:
             value = limit.values[j, i]
             text = (f"> {speeds.max():g}" if value == np.inf else f"< {speeds.min():g}" if np.isnan(value)
-                    else f"{value:.2g}")
+                    else f"{float(f'{value:.2g}'):g}")  # 140, not 1.4e+02
             ax.text(i, j, text, ha="center", va="center", fontsize="small",
                     color="white" if shown[j, i] < np.sqrt(speeds.min() * speeds.max()) else "black")
     for axis, dim, ticks in ((ax.xaxis, x_dim, xs), (ax.yaxis, y_dim, ys)):
