@@ -82,7 +82,7 @@ FLAG_LABELS = {
     "area_capped": "A_r/A_n > 1 at a node: counted as full contact",
     "bulk_yield": f"pressure > {LINE_YIELD_ONSET:g} S_y: bulk yield (bodies modelled elastic)",
     "bandwidth": f"bandwidth α < {MIN_BANDWIDTH:g}: no Gaussian surface has these summits",
-    "flow_factor_range": f"h/σ < {MIN_FLOW_FACTOR_FILM:g} under pressure: flow factors extrapolated",
+    "flow_factor_range": f"h/σ < {MIN_FLOW_FACTOR_FILM:g} under pressure: flow below Patir-Cheng's fit (percolation law)",
     "inlet": f"inlet short of the flooded film by ≥ {100 * INLET_FILM_DEFICIT:g} %",
 }
 
