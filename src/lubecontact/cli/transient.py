@@ -21,6 +21,9 @@ def summary(ds) -> str:
         var = ds[name]
         units = "" if var.attrs["units"] == "1" else f" {var.attrs['units']}"
         lines.append(f"{name:>22s} = {var.item():.6g}{units}")
+    if "reconnect_time_error" in ds:
+        lines.append(f"{'reconnect_time_error':>22s} = {ds['reconnect_time_error'].item():.3g} s "
+                     f"(time integration, from a run at motion.tolerance / 10)")
     lines.append(f"{'converged':>22s} = {'yes' if ds['converged'].item() == 1 else 'NO'}")
     return "\n".join(lines)
 

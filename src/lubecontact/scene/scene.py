@@ -571,9 +571,19 @@ class Motion(_Section):
     table: tuple | None = _field(None, _SpeedTable(), "table: rows (t, U), linear in between, the last U after")
     reconnect_factor: float = _field(2.0, _Real("1", low=1.0), "reconnected when R <= this x the resistance at rest; above it a relative event")
     tolerance: float = _field(1.0e-3, _Real("1", low=0.0, high=0.5), "relative local error of a time step (film)")
+    error_bar: bool = _field(
+        False, _Flag(), "run again at tolerance/10 and report reconnect_time's time-integration error (twice the cost)"
+    )
 
     def to_dict(self):
-        return None if self == Motion() else super().to_dict()
+        """None for the default motion; ``error_bar`` left out when off, so scenes written
+        before the key keep their hash."""
+        if self == Motion():
+            return None
+        data = super().to_dict()
+        if not self.error_bar:
+            del data["error_bar"]
+        return data
 
 
 @dataclass(frozen=True)

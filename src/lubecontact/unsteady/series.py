@@ -44,6 +44,8 @@ SCALARS = {
     "rejected_steps": ("1", "time steps rejected by the error control or a failed solve"),
     "coupled_solves": ("1", "coupled solves (accepted and rejected steps, start and rest state)"),
     "solve_time": ("s", "wall time of the run"),
+    "reconnect_time_error": ("s", "estimated time-integration error of reconnect_time (motion.error_bar): "
+                                  "from a second run at motion.tolerance / 10, Richardson in the tolerance"),
     "open_fraction": ("1", "oscillation: fraction of the oscillation time within events above the open resistance"),
     "relative_threshold": ("ohm", "relative event threshold: the reconnection factor x the resistance at rest"),
     "min_event_duration": ("s", "shortest time above a threshold that counts as an event"),

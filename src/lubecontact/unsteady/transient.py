@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import sys
 
@@ -39,6 +40,36 @@ def _rest_resistance(integrator) -> float:
     return instant(model, state)["contact_resistance"]
 
 
+# motion.error_bar: the second run's tolerance is this many times tighter. With the local
+# error per step held at the tolerance, steps scale as tol^(1/(p+1)) and the global error
+# of BDF_p as tol^(p/(p+1)) (Hairer, Norsett & Wanner, "Solving ODEs I", section II.4), so
+# for BDF2 the tighter run's error is 10^(-2/3) of the first's, and the first's error is
+# (t(tol) - t(tol/10)) / (1 - 10^(-2/3)) (Richardson extrapolation in the tolerance).
+ERROR_BAR_TIGHTENING = 10.0
+ERROR_ORDER_IN_TOLERANCE = 2.0 / 3.0
+
+
+def tighter_reconnect_time(scene, history, rest: float, progress: bool) -> float:
+    """reconnect_time of the same motion at motion.tolerance / ERROR_BAR_TIGHTENING (NaN if
+    that run fails)."""
+    motion = dataclasses.replace(scene.motion, tolerance=scene.motion.tolerance / ERROR_BAR_TIGHTENING)
+    tight_scene = dataclasses.replace(scene, motion=motion)
+    levels, failure = TimeIntegrator(tight_scene, history).run(progress)
+    if failure:
+        return math.nan
+    resistance = [instant(lv.model, lv.state)["contact_resistance"] for lv in levels]
+    times = [lv.time for lv in levels]
+    return reconnect_time(times, resistance, history.rest_from, scene.motion.reconnect_factor * rest)
+
+
+def integration_error(value: float, tighter: float | None) -> float:
+    """|value - exact| estimated from ``tighter`` (the run at tolerance / 10), s: NaN where
+    either is not finite (no reconnection, a failed run)."""
+    if tighter is None or not (math.isfinite(value) and math.isfinite(tighter)):
+        return math.nan
+    return abs(value - tighter) / (1.0 - ERROR_BAR_TIGHTENING ** -ERROR_ORDER_IN_TOLERANCE)
+
+
 def _to_stderr(line: str) -> None:
     print(f"lubecontact: transient {line}", file=sys.stderr, flush=True)
 
@@ -66,6 +97,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         integrator = TimeIntegrator(scene, history)
         levels, failure = integrator.run(progress, report=None if progress else _to_stderr)
         rest = _rest_resistance(integrator)
+        tight = None
+        if scene.motion.error_bar and history.rest_from is not None and not failure:
+            tight = tighter_reconnect_time(scene, history, rest, progress)
     threshold = open_resistance(scene)
     series_t = np.array([lv.time for lv in levels])
     notes = []
@@ -88,6 +122,11 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     if failure and math.isinf(recon):
         recon = math.nan  # the run ended early: "not within duration" is unknown
     scalars["reconnect_time"] = recon
+    if scene.motion.error_bar:
+        scalars["reconnect_time_error"] = integration_error(recon, tight)
+    if tight is not None:
+        notes.append(f"reconnect_time error bar from a second run at motion.tolerance = "
+                     f"{scene.motion.tolerance / ERROR_BAR_TIGHTENING:g}: {tight!r} s there")
     # discontinuity events above the open resistance and above reconnect_factor x rest: the
     # reconnected state of reconnect_time is the end of a relative event (docs/DESIGN.md "Time")
     min_duration = scene.interface.min_event_duration
