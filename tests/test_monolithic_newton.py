@@ -1,13 +1,11 @@
 """The one-Newton solver (model/monolithic_newton.py, docs/physics.md section 20) and the
-pieces it stands on: the Fischer-Burmeister function, the Reynolds residual's film slope, the
-smooth leak floor. Each against an independent truth: the complementarity
+pieces it stands on: the Fischer-Burmeister function and the Reynolds residual's film slope. Each against an independent truth: the complementarity
 conditions themselves, finite differences of the assembled residual, the nested solver on
 the same discrete problem, and the isoviscous-elastic reference table of docs/physics.md
 section 5 where the nested solver fails."""
 
 import numpy as np
 import pytest
-from scipy.special import ndtr
 
 import lubecontact as lc
 from lubecontact.model.auto_effects import operating_point
@@ -17,13 +15,6 @@ from lubecontact.model.prepare import prepare
 from lubecontact.numerics.complementarity import fischer_burmeister
 from lubecontact.numerics.reynolds import reynolds_system
 from lubecontact.numerics.reynolds_jacobian import outflow_film_jacobian
-from lubecontact.physics.flow_factors import (
-    H_VALID,
-    SEALED_LEAKAGE,
-    percolating_coefficient_and_slope,
-    poiseuille_coefficient_and_slope,
-)
-from lubecontact.physics.smooth_transitions import smooth_floor
 from lubecontact.scene import SceneError
 
 TABLE1 = "config/scenes/table1.yaml"
@@ -53,34 +44,6 @@ def test_fischer_burmeister_slopes_against_finite_differences():
         np.testing.assert_allclose(da, fd_a, atol=1e-6)
         np.testing.assert_allclose(db, fd_b, atol=1e-6)
         assert np.all((da >= 0) & (da <= 2) & (db >= 0) & (db <= 2) & (da + db > 0))
-
-
-def test_smooth_floor_is_above_the_corner_by_at_most_half_the_floor():
-    v = np.linspace(-3, 3, 6001)
-    floor, slope = smooth_floor(v, 0.1)
-    assert np.all(floor > np.maximum(v, 0.1)) and np.all(floor - np.maximum(v, 0.1) <= 0.05 + 1e-15)
-    np.testing.assert_allclose(np.gradient(floor, v), slope, atol=2e-3)
-    far = np.abs(v - 0.1) > 1.0
-    np.testing.assert_allclose(floor[far], np.maximum(v, 0.1)[far], atol=0.1**2 / 4 / 0.99)
-
-
-def test_percolating_coefficient_is_smooth_at_its_leak_and_each_law_elsewhere():
-    h = np.linspace(-3, 3, 120001) * SIGMA
-    k, dk = percolating_coefficient_and_slope(h, SIGMA, MU)
-    assert np.all(np.diff(k) > 0)
-    H = h / SIGMA
-    step = 1e-6 * SIGMA
-    fd = (percolating_coefficient_and_slope(h + step, SIGMA, MU)[0] - percolating_coefficient_and_slope(h - step, SIGMA, MU)[0]) / (2 * step)
-    away = np.abs(H - H_VALID) > 2e-6  # Patir-Cheng's own corner at H = 0.5 stays
-    np.testing.assert_allclose(dk[away], fd[away], rtol=1e-5, atol=1e-9 * dk.max())
-    k_valid = poiseuille_coefficient_and_slope(H_VALID * SIGMA, SIGMA, MU)[0]
-    above = H >= H_VALID
-    np.testing.assert_allclose(k[above], poiseuille_coefficient_and_slope(h[above], SIGMA, MU)[0], rtol=SEALED_LEAKAGE**2)
-    between = (H > 0.1) & (H < H_VALID)
-    percolation = k_valid * (ndtr(H[between]) - 0.5) / (ndtr(H_VALID) - 0.5)
-    np.testing.assert_allclose(k[between], percolation, rtol=2e-3)
-    leak = SEALED_LEAKAGE * k_valid
-    assert np.all(k > leak) and k[H < -1].max() < 1.01 * leak
 
 
 @pytest.mark.parametrize("rough", [True, False], ids=["faces", "nodal"])
@@ -174,13 +137,14 @@ def test_newton_is_refused_where_it_does_not_reach_yet():
     assert lc.load_scene(TABLE1, {"solver.method": "nested"}).hash == lc.load_scene(TABLE1).hash
 
 
-def test_a_stalled_nested_solve_is_finished_by_one_newton_and_says_so():
-    """Fig. 3's 36 x 36 mesh at 0.0251 m/s, near the lift-off fold: the nested solver's
-    deformation change stalls above its tolerance for 200 iterations at the solution
-    itself; one Newton from its last state meets every tolerance (in one step). (A cold
-    solver.method newton finds the same resistance, to 4e-7 in ln R, in 21 s.)"""
-    overrides = {"mesh.nx": 36, "mesh.ny": 36, "operating.speed": 0.0251}
-    ds = lc.solve(lc.load_scene(TABLE1, overrides))
-    assert int(ds.converged) == 1
-    assert "the nested solver stopped after 200 iterations" in ds.attrs["notes"]
-    assert abs(float(ds.force_residual)) <= 1e-6 * 5.0 and float(ds.reynolds_residual) <= 1e-6
+def test_a_failed_nested_solve_is_finished_by_one_newton_and_says_so():
+    """The soft elastic film at g_E = 32 with the default method: the nested solver's force
+    balance fails (h_min ~ 1e-22 m), one Newton from its last state cannot recover from
+    there, one from a cold start converges (a line mesh: the dense step), and the notes say
+    which; the film is the reference table's (docs/physics.md section 5) within 3 %."""
+    scene = lc.load_scene(TABLE1, {"effects.asperity_contact": False, "operating.speed": 0.001, "mesh.ny": 1,
+                                   "mesh.nx": 401, "mesh.x_min": -2.5e-4, "mesh.x_max": 1e-4})
+    ds = lc.solve(scene)
+    assert int(ds.converged) == 1 and abs(float(ds.force_residual)) <= 1e-6 * 5.0
+    assert "the nested solver stopped" in ds.attrs["notes"] and "one Newton from a cold start" in ds.attrs["notes"]
+    assert float(ds.min_film_thickness) == pytest.approx(operating_point(scene).elastic_film, rel=0.03)

@@ -30,7 +30,6 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import erfcx, ndtr
 
-from lubecontact.physics.smooth_transitions import smooth_floor
 
 # Eq. (2): Patir & Cheng (1978) isotropic (gamma = 1) pressure flow factor 1 - C exp(-r H).
 PC_C = 0.90
@@ -172,10 +171,8 @@ SEALED_LEAKAGE = 1e-3
 def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
     """(k, dk/dh) of the Poiseuille coefficient down to percolation, m^3/(Pa s) and m^2/(Pa s):
     Patir-Cheng's (``poiseuille_coefficient_and_slope``) for H = h/sigma >= 0.5, the
-    percolation law above for H < 0.5, floored at SEALED_LEAKAGE k(0.5) by a smooth maximum
-    (physics/smooth_transitions.smooth_floor: above the floor by at most half the leak, so
-    the leak's corner is no corner for Newton's method). Continuous at H = 0.5, increasing
-    in h. Needs rough surfaces (sigma > 0).
+    percolation law above for H < 0.5, floored at SEALED_LEAKAGE k(0.5) (slope 0 there).
+    Continuous at H = 0.5, non-decreasing in h. Needs rough surfaces (sigma > 0).
 
     Evaluated in one pass (it runs on every face of every evaluation): above H = 0.5 only the
     branch of poiseuille_coefficient_and_slope that applies there, below it one Phi."""
@@ -198,7 +195,5 @@ def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
     above = H >= H_VALID
     k = np.where(above, upper, k_valid * share)
     slope = np.where(above, upper_slope, k_valid * share_slope / sigma)
-    # below the threshold the share goes on falling (negative), and the floor takes over
-    # smoothly (docs/physics.md section 20)
-    floored, floor_slope = smooth_floor(k, SEALED_LEAKAGE * k_valid)
-    return floored, floor_slope * slope
+    leaking = k < SEALED_LEAKAGE * k_valid
+    return np.where(leaking, SEALED_LEAKAGE * k_valid, k), np.where(leaking, 0.0, slope)
