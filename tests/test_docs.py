@@ -78,7 +78,8 @@ def test_the_scene_keys_table_in_config_readme_is_current():
 def test_the_numbers_the_docs_quote_about_the_default_run_are_current():
     """README.md and results/README.md quote cases, chunks, figures and submissions of the
     default run, planned as the Snakefile plans them, resistances and load fractions of a few
-    cheap solves (within 1 %), and of the long runs' blocks the cheap results, a line
+    cheap solves and the results of cheap analyses and of the code's constants (within 1 %),
+    and of the long runs' blocks the cheap results, a line
     contact's reconnect time (within 2 %), between markers that scripts/doc_numbers.py writes."""
     done = subprocess.run([sys.executable, str(ROOT / "scripts" / "doc_numbers.py"), "--check"],
                           capture_output=True, text=True)
