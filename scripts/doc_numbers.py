@@ -91,17 +91,6 @@ FOLD = 0.0158
 PAPER = [f"fig{n:02d}" for n in range(3, 12)]
 
 
-def decimal(x: float) -> str:
-    """Three significant digits, never in e-notation (115, 26.3, 0.498)."""
-    return f"{x:.{max(0, 2 - math.floor(math.log10(abs(x))))}f}"
-
-
-def mantissa(x: float) -> str:
-    """Three significant digits in 9.46e8 style."""
-    m, exponent = f"{x:.2e}".split("e")
-    return f"{m}e{int(exponent)}"
-
-
 @functools.cache
 def sample_surfaces() -> dict:
     """McCool's parameters of the sample maps and their composite, as ``lubecontact roughness``
@@ -113,8 +102,8 @@ def sample_surfaces() -> dict:
 
 def surface_cell(sample: str, column: str) -> str:
     p = sample_surfaces()[sample]
-    return {"sigma": decimal(p.sigma * 1e6), "eta": mantissa(p.asperity_density),
-            "radius": decimal(p.asperity_radius * 1e6), "alpha": doc_runs.num(p.alpha),
+    return {"sigma": shown(p.sigma * 1e6), "eta": shown(p.asperity_density, digits=3),
+            "radius": shown(p.asperity_radius * 1e6), "alpha": doc_runs.num(p.alpha),
             "gamma": f"{p.gamma:.2f}"}[column]
 
 
@@ -191,11 +180,12 @@ def numbers() -> dict[str, str]:
     }
 
 
-def shown(ohm: float) -> str:
-    """A resistance as the docs print it: 3 digits between 0.01 and 1e4, else 2.0e21 style."""
-    if 1e-2 <= ohm < 1e4:
-        return f"{ohm:.{max(0, 2 - math.floor(math.log10(ohm)))}f}"
-    mantissa, exponent = f"{ohm:.1e}".split("e")
+def shown(x: float, digits: int = 2) -> str:
+    """A number as the docs print it: 3 digits between 0.01 and 1e4, else 2.0e21 style
+    (``digits`` significant digits)."""
+    if 1e-2 <= x < 1e4:
+        return f"{x:.{max(0, 2 - math.floor(math.log10(x)))}f}"
+    mantissa, exponent = f"{x:.{digits - 1}e}".split("e")
     return f"{mantissa}e{int(exponent)}"
 
 
