@@ -2,10 +2,12 @@
 is typed by hand: the default run's cases, chunks, figures and cluster submissions, from the
 workflow's own planning (between ``<!-- planned:NAME -->`` and ``<!-- /planned -->``), a
 few cheap solves (51 x 51, seconds in all) between ``<!-- solved:NAME -->`` and
-``<!-- /solved -->``, and with ``--runs`` the blocks of long runs (transient stops, the
+``<!-- /solved -->``, cheap analyses and the code's own constants (the measured sample
+surfaces, the size estimator, E*, Hertz pressures, bandwidths, mesh columns) between
+``<!-- computed:NAME -->`` and ``<!-- /computed -->``, and with ``--runs`` the blocks of long runs (transient stops, the
 accuracy study, their times; scripts/doc_runs.py) between ``<!-- run:NAME -->`` and
 ``<!-- /run -->``. ``--check`` only says whether both files are current (exit 1 if not):
-planned numbers exactly, solved ones within 1 %, and of the long runs the cheap results
+planned numbers exactly, solved and computed ones within 1 %, and of the long runs the cheap results
 (``<!-- measured:NAME -->``, doc_runs.CHECKED) within 2 %; it never reruns a block, and
 never checks a time. tests/test_docs.py runs it.
 
@@ -18,6 +20,7 @@ never checks a time. tests/test_docs.py runs it.
 """
 
 import argparse
+import functools
 import math
 import re
 import sys
@@ -26,14 +29,24 @@ from pathlib import Path
 import yaml
 
 import doc_runs
+from lubecontact.model import resources
+from lubecontact.model.auto_effects import DEFAULT_TOLERANCE, OPEN_CIRCUIT_RESISTANCE
 from lubecontact.model.solve import solve
+from lubecontact.model.validity import bandwidth
+from lubecontact.numerics.mesh import build_mesh
+from lubecontact.physics.electrical.film import simmons_specific_resistance
+from lubecontact.physics.electrical.spots import MAX_AREA_FRACTION
+from lubecontact.physics.film_estimates import hertz_half_width
+from lubecontact.physics.materials import effective_modulus
 from lubecontact.scene import load_scene
+from lubecontact.surfaces.mccool import composite
+from lubecontact.surfaces.measured import scene_roughness
 from lubecontact.studies import figure_grids, transient_cases
 from lubecontact.studies.sweep import sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 FILES = [ROOT / "README.md", ROOT / "results" / "README.md"]
-MARK = re.compile(r"<!-- (planned|solved):(\w+) -->(.*?)<!-- /(?:planned|solved) -->", re.S)
+MARK = re.compile(r"<!-- (planned|solved|computed):(\w+) -->(.*?)<!-- /(?:planned|solved|computed) -->", re.S)
 RUN = re.compile(r"<!-- run:(\w+) -->\n(.*?)\n<!-- /run -->", re.S)
 MEASURED = re.compile(r"<!-- measured:(\w+) -->(.*?)<!-- /measured -->", re.S)
 TABLE1 = ROOT / "config" / "scenes" / "table1.yaml"
@@ -57,9 +70,85 @@ FRACTION = {
     "fold_cold": {"operating.speed": 0.0158},
     **{f"{name}_fraction": overrides for name, overrides in SOLVED.items() if name.startswith("split_")},
 }
+# the whole electrical path (bench/full_path_numbers.py): name -> (overrides of Table 1, 51 x 51; variable)
+FULL_PATH = {"effects.macro_constriction": True, "effects.film_conduction": True}
+AT_REST = {"table1": {}, "r25": {"geometry.radius": 0.0025}}
+FIGURE_TOPS = {"fig04": {"roughness.sigma": 0.25e-6}, "fig06": {"geometry.radius": 0.02},
+               "fig08": {"operating.force": 1.0}, "fig10": {"lubricant.viscosity": 0.3}}
+PARTS = {
+    **{f"rest_{tag}_{part}": ({"operating.speed": 0.0, **extra, **FULL_PATH}, variable)
+       for tag, extra in AT_REST.items()
+       for part, variable in (("spots", "spot_resistance"), ("cluster", "macro_constriction_resistance"),
+                              ("total", "contact_resistance"))},
+    **{f"rest_{tag}_paper": ({"operating.speed": 0.0, **extra}, "contact_resistance") for tag, extra in AT_REST.items()},
+    **{f"{figure}_top_{model}": ({"operating.speed": 10.0, **extra, **(FULL_PATH if model == "full" else {})},
+                                "contact_resistance")
+       for figure, extra in FIGURE_TOPS.items() for model in ("full", "paper")},
+}
+SURFACES = ROOT / "config" / "surfaces"
 # the fold from below: a sweep along the figures' speeds (config/figures/fig04.yaml) up to this one
 FOLD = 0.0158
 PAPER = [f"fig{n:02d}" for n in range(3, 12)]
+
+
+@functools.cache
+def sample_surfaces() -> dict:
+    """McCool's parameters of the sample maps and their composite, as ``lubecontact roughness``
+    finds them with the default cut-off."""
+    ground, _ = scene_roughness(SURFACES / "ground.asc")
+    honed, _ = scene_roughness(SURFACES / "honed.asc")
+    return {"ground": ground, "honed": honed, "composite": composite(ground.moments, honed.moments)[0]}
+
+
+def surface_cell(sample: str, column: str) -> str:
+    p = sample_surfaces()[sample]
+    return {"sigma": shown(p.sigma * 1e6), "eta": shown(p.asperity_density, digits=3),
+            "radius": shown(p.asperity_radius * 1e6), "alpha": doc_runs.num(p.alpha),
+            "gamma": f"{p.gamma:.2f}"}[column]
+
+
+def estimate_at(n: int) -> resources.Estimate:
+    """The CLI's memory and time estimate of an n x n Table 1 solve."""
+    return resources.estimate(load_scene(TABLE1, {"mesh.nx": n, "mesh.ny": n}))
+
+
+def table1_alpha(overrides: dict) -> str:
+    """Nayak's alpha that a scene's sigma, eta, R_peak imply (the bandwidth check)."""
+    return doc_runs.num(bandwidth(load_scene(TABLE1, overrides).roughness))
+
+
+def hertz_peak_mpa(overrides: dict) -> str:
+    """Hertz line-contact peak pressure p0 = 2 w'/(pi b) of Table 1, MPa."""
+    scene = load_scene(TABLE1, overrides)
+    return f"{2 * scene.operating.force / scene.geometry.length / (math.pi * hertz_half_width(scene)) / 1e6:.2f}"
+
+
+# computed numbers: name -> what computes it (analyses and constants, well under a second each)
+COMPUTED = {
+    **{f"surface_{sample}_{column}": functools.partial(surface_cell, sample, column)
+       for sample in ("ground", "honed", "composite") for column in ("sigma", "eta", "radius", "alpha", "gamma")},
+    "surface_cutoff_um": lambda: f"{sample_surfaces()['ground'].moments.cutoff * 1e6:g}",
+    "alpha_table1": lambda: table1_alpha({}),
+    "alpha_s025": lambda: table1_alpha({"roughness.sigma": 0.25e-6}),
+    "alpha_s2": lambda: table1_alpha({"roughness.sigma": 2e-6}),
+    "alpha_s002": lambda: table1_alpha({"roughness.sigma": 0.02e-6}),
+    "size_base_mb": lambda: f"{resources.BASE_MB:g}",
+    "size_kb_per_node": lambda: f"{resources.MB_PER_NODE * 1e3:g}",
+    "size_51_mb": lambda: f"{estimate_at(51).memory_mb:.0f}",
+    "size_501_mb": lambda: f"{estimate_at(501).memory_mb:.0f}",
+    "size_2000_gb": lambda: f"{estimate_at(2000).memory_mb / 1024:.1f}",
+    "size_time_exponent": lambda: f"{resources.TIME_EXPONENT:g}",
+    "size_201_s": lambda: f"{estimate_at(201).seconds:.2g}",
+    "size_announce_s": lambda: f"{resources.ANNOUNCE_SECONDS:g}",
+    "auto_tolerance_pct": lambda: f"{100 * DEFAULT_TOLERANCE:g}",
+    "auto_open_ohm": lambda: shown(OPEN_CIRCUIT_RESISTANCE),
+    "columns_10": lambda: str(build_mesh(load_scene(TABLE1, {"operating.speed": 10.0})).shape[1]),
+    "e_star_gpa": lambda: f"{effective_modulus(load_scene(TABLE1)) / 1e9:.2f}",
+    "hertz_mpa": lambda: hertz_peak_mpa({}),
+    "hertz_rigid_mpa": lambda: hertz_peak_mpa({"block.youngs_modulus": 1e15}),
+    "tunnel_1nm_1ev": lambda: shown(float(simmons_specific_resistance(1e-9, 1.0))),
+    "psi_clamp": lambda: f"{MAX_AREA_FRACTION:g}",
+}
 
 
 def numbers() -> dict[str, str]:
@@ -80,7 +169,7 @@ def numbers() -> dict[str, str]:
     profile = yaml.safe_load((ROOT / "workflow" / "profiles" / "slurm" / "config.yaml").read_text())
     per_submission = profile["group-components"]["solve"]
     return {
-        **{name: None for name in [*SOLVED, *FRACTION, "fold_swept"]},  # solved on demand (solved_number)
+        **{name: None for name in [*SOLVED, *FRACTION, *PARTS, *COMPUTED, "fold_swept"]},  # on demand (solved_number)
         "paper_cases": str(len(paper_cases)),
         "paper_chunks": str(len(paper_chunks)),
         "cases": str(len(all_cases)),
@@ -91,26 +180,40 @@ def numbers() -> dict[str, str]:
     }
 
 
-def shown(ohm: float) -> str:
-    """A resistance as the docs print it: 3 digits between 0.01 and 1e4, else 2.0e21 style."""
-    if 1e-2 <= ohm < 1e4:
-        return f"{ohm:.{max(0, 2 - math.floor(math.log10(ohm)))}f}"
-    mantissa, exponent = f"{ohm:.1e}".split("e")
+def shown(x: float, digits: int = 2) -> str:
+    """A number as the docs print it: 3 digits between 0.01 and 1e4, else 2.0e21 style
+    (``digits`` significant digits)."""
+    if 1e-2 <= x < 1e4:
+        return f"{x:.{max(0, 2 - math.floor(math.log10(x)))}f}"
+    mantissa, exponent = f"{x:.{digits - 1}e}".split("e")
     return f"{mantissa}e{int(exponent)}"
 
 
+@functools.cache
+def solved(overrides: tuple):
+    """Table 1 with ``overrides`` (a sorted tuple of items) solved once, however many numbers quote it."""
+    ds = solve(load_scene(TABLE1, dict(overrides)))
+    if int(ds["converged"]) != 1:
+        raise RuntimeError(f"{dict(overrides)}: the solve did not converge; no number is quoted from it")
+    return ds
+
+
 def solved_number(name: str) -> str:
+    if name in COMPUTED:
+        return COMPUTED[name]()
     if name == "fold_swept":
         fig04 = figure_grids.read_yaml(ROOT / "config" / "figures" / "fig04.yaml")["speeds"]
         speeds = [u for u in figure_grids.log_speeds(fig04["from"], fig04["to"], fig04["per_decade"]) if u <= FOLD]
         ds = sweep(load_scene(TABLE1), speeds, progress=False).sel(speed=FOLD)
-    else:
-        ds = solve(load_scene(TABLE1, SOLVED.get(name) or FRACTION[name]))
-    if int(ds["converged"]) != 1:
-        raise RuntimeError(f"{name}: the solve did not converge; no number is quoted from it")
-    if name in SOLVED:
-        return shown(float(ds["contact_resistance"]))
-    return f"{float(ds['fluid_load_fraction']):.3g}"
+        if int(ds["converged"]) != 1:
+            raise RuntimeError(f"{name}: the solve did not converge; no number is quoted from it")
+        return f"{float(ds['fluid_load_fraction']):.3g}"
+    overrides, variable = PARTS.get(name) or (SOLVED.get(name) or FRACTION[name],
+                                              "contact_resistance" if name in SOLVED else "fluid_load_fraction")
+    ds = solved(tuple(sorted(overrides.items())))
+    if variable == "fluid_load_fraction":
+        return f"{float(ds[variable]):.3g}"
+    return shown(float(ds[variable]))
 
 
 def current(text: str, values: dict) -> str:
@@ -126,7 +229,7 @@ def current(text: str, values: dict) -> str:
 
 
 def _same(kind: str, old: str, new: str) -> bool:
-    """A planned number exactly; a solved one within 1 % (round-off of another BLAS may move
+    """A planned number exactly; a solved or computed one within 1 % (round-off of another BLAS may move
     its last printed digit); a measured one within 2 % (a transient's steps may fall
     differently)."""
     if kind == "planned" or old == new:
