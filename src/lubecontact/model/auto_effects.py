@@ -187,7 +187,7 @@ class DryContact:
         return DRY_DEPTH_MARGIN * min(self.separation, 0.0) + max(self.separation, 0.0) - DRY_FILM_MARGIN * sigma
 
 
-def _root(f, guess: float, step: float, xtol: float) -> float:
+def decreasing_root(f, guess: float, step: float, xtol: float) -> float:
     """Root of the decreasing function f: bracketed from ``guess`` by doubling steps, then Brent."""
     from scipy.optimize import brentq
 
@@ -214,7 +214,7 @@ def dry_contact(scene, contact) -> DryContact:
     def balance(x, load, guess, step):
         gap = x**2 / (2.0 * radius)
         weight = np.gradient(x) * length  # nodal areas of the line, m^2
-        z = _root(lambda z: float(np.sum(contact.pressure(gap + z) * weight)) - load, guess, step, 1e-9 * sigma)
+        z = decreasing_root(lambda z: float(np.sum(contact.pressure(gap + z) * weight)) - load, guess, step, 1e-9 * sigma)
         return z, gap + z, weight
 
     z, _, _ = balance(np.linspace(x_min, x_max, _DRY_NODES), force, 0.0, sigma)

@@ -18,14 +18,16 @@ Each Newton step linearises all three blocks: the Reynolds block J_pp = D_a + D_
 (sparse, one LU factorisation), its film slope J_ph (numerics/reynolds_jacobian.py), the
 contact stiffness and the influence operator K (an FFT). The pressure update is eliminated
 with the LU factors and the remaining (delta, z) system, the identity minus K times the
-fluid and contact stiffness, is solved by GMRES, each product one back-substitution and one
-FFT (without deformation it is one scalar equation). A backtracking line search on the
+fluid and contact stiffness, is solved densely up to DENSE_NODES nodes (line contacts) and
+by GMRES above, each product one back-substitution and one FFT (without deformation it is
+one scalar equation). A backtracking line search on the
 scaled residual norm (Armijo) globalises the step; with smooth surfaces the step is also
 kept short of closing the film (h > 0 at every node: the smooth film has no contact law).
 
-A cold start solves the same problem on the mesh with every other node first (down to
-NESTED_COARSEST nodes a side) and starts from its interpolated solution; where Newton
-still fails from the start, the load is approached by continuation from a fraction of it.
+A cold start begins from the physics (cold_start); with asperity contact it first solves
+the same problem on the mesh with every other node (down to NESTED_COARSEST nodes a side)
+and starts from its interpolated solution; where Newton still fails from the start, the
+load is approached by continuation from a fraction of it.
 
 Stopping tests, in physical units and all met together (``solver.tolerance`` = tol):
 |F_fluid + F_contact - F| <= tol F, max |R_delta| <= tol max(range of delta, h_s), and
@@ -41,8 +43,8 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import LinearOperator, gmres, splu
 
+from lubecontact.model.auto_effects import decreasing_root, operating_point
 from lubecontact.model.coupling import Diagnostics, WarmStart
-from lubecontact.model.auto_effects import operating_point
 from lubecontact.model.evaluation import film_scale
 from lubecontact.model.fluid_film import fluid_faces, fluid_film
 from lubecontact.model.model import Model, SolveError, State
@@ -183,9 +185,9 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
 
 def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None):
     """(d pressure (ny, nx), d delta (ny, nx), d z, dF/dz at fixed delta) of the Newton step:
-    the pressure eliminated with the LU factors of J_pp, (delta, z) by GMRES (module
-    docstring); ``influence``: K as a dense matrix (dense_influence) for the dense reduced
-    solve of small meshes, else GMRES. Raises RuntimeError where a linear solve fails.""" 
+    the pressure eliminated with the LU factors of J_pp, then (delta, z) (module docstring);
+    ``influence``: K as a dense matrix (dense_influence) for the dense reduced solve of
+    small meshes, else GMRES. Raises RuntimeError where a linear solve fails."""
     mesh = model.mesh
     area = mesh.nodal_area
     force = model.scene.operating.force
@@ -202,12 +204,11 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
     base = np.zeros(mesh.shape)  # pressure step at fixed film
     if lu is not None:
         base[lin.unknown] = lu.solve(-lin.r_p)
-    ones = np.ones(mesh.shape)
-    rigid = pressure_response(ones) + lin.contact_slope  # total pressure per unit dz
-    stiffness = float(np.sum(rigid * area))  # dF/dz at fixed delta, N/m (< 0)
+    fluid_per_dz = pressure_response(np.ones(mesh.shape))
+    stiffness = float(np.sum((fluid_per_dz + lin.contact_slope) * area))  # dF/dz at fixed delta, N/m (< 0)
     if model.deformation is None:
         dz = (-lin.r_z - weight * float(np.sum(base * area))) / (weight * stiffness)
-        return base + dz * pressure_response(ones), None, dz, stiffness
+        return base + dz * fluid_per_dz, None, dz, stiffness
 
     n = mesh.nx * mesh.ny
     rhs = np.append((-lin.r_delta + model.deformation(base)).ravel(), -lin.r_z - weight * float(np.sum(base * area)))
@@ -288,7 +289,7 @@ def longest_film_step(model: Model, lin: Linearisation, d_delta, dz) -> float:
     return float(min(1.0, FILM_STEP_FRACTION * np.min(lin.state.film[closing] / -dh[closing])))
 
 
-def converged(model: Model, lin: Linearisation, tolerance: float) -> bool:
+def converged(lin: Linearisation, tolerance: float) -> bool:
     """The stopping tests of the module docstring."""
     force_ok = abs(lin.r_z) / lin.film_scale <= tolerance
     reynolds_ok = lin.state.reynolds is None or lin.state.reynolds.residual <= tolerance
@@ -320,7 +321,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
     influence = dense_influence(model)
     history = [lin.merit()]
     for iteration in range(1, max_iterations + 1):
-        if converged(model, lin, tolerance):
+        if converged(lin, tolerance):
             return lin, iteration - 1, stiffness, ""
         if len(history) > STALL_ITERATIONS and history[-1] > STALL_FACTOR * history[-1 - STALL_ITERATIONS]:
             return lin, iteration, stiffness, (
@@ -351,32 +352,20 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
             lin = linearise(model, it, smoothing_for(candidate))
         forcing = min(0.1, GMRES_FORCING + np.sqrt(lin.merit() / max(merit, 1e-300)))
         history.append(lin.merit())
-    if converged(model, lin, tolerance):
+    if converged(lin, tolerance):
         return lin, max_iterations, stiffness, ""
     return lin, max_iterations, stiffness, f"{max_iterations} Newton iterations without meeting the tolerances"
 
 
 def dry_position(model: Model, delta: np.ndarray) -> float:
     """z at which the asperity contact alone carries the force at deformation ``delta``
-    (bisection on the monotone contact force; docs/physics.md section 2)."""
+    (the contact force falls with z: a bracketed root, auto_effects.decreasing_root;
+    docs/physics.md section 2)."""
     force, area = model.scene.operating.force, model.mesh.nodal_area
     sigma = model.contact.sigma
     gap = model.undeformed_gap + delta
-
-    def carried(z):
-        return float(np.sum(model.contact.pressure(gap + z) * area))
-
-    low, high = -sigma, sigma
-    while carried(low) < force:
-        low -= 2.0 * (high - low)
-    while carried(high) > force:
-        high += 2.0 * (high - low)
-    for _ in range(200):
-        middle = 0.5 * (low + high)
-        if middle in (low, high):
-            break
-        low, high = (middle, high) if carried(middle) > force else (low, middle)
-    return 0.5 * (low + high)
+    return decreasing_root(lambda z: float(np.sum(model.contact.pressure(gap + z) * area)) - force,
+                           0.0, sigma, 1e-9 * sigma)
 
 
 def hertz_pressure(model: Model) -> np.ndarray:
@@ -490,9 +479,8 @@ def level_solution(model: Model, initial: WarmStart | None, tolerance: float, co
     """(linearisation, iterations, stiffness, failure) on this mesh, started from a warm
     start on it, else from the solution on the coarser mesh (nested), else cold."""
     start = warm_iterate(model, initial)
-    if start is None or start.delta.shape != model.mesh.shape:
+    if start is None:
         coarse = model.coarsened(NESTED_COARSEST) if model.contact is not None else None
-        start = None
         if coarse is not None:
             lin, _, _, failure = level_solution(coarse, None, tolerance)
             if lin is not None and not failure:
