@@ -44,6 +44,14 @@ class SqueezeTerm(Protocol):
         """dh_T/dt (m/s) at each node for the film content ``expected_gap`` (m)."""
 
 
+class AppliedLoad(Protocol):
+    """The force on the cylinder as a function of its position, where it is not the constant
+    operating.force: a transient step of a contact with mass and spring (unsteady/dynamics.py)."""
+
+    def force(self, z: float) -> tuple[float, float]:
+        """(F, dF/dz) at cylinder position z (m): N and N/m."""
+
+
 @dataclass
 class Model:
     """The sub-models a scene calls for, built once (disabled effects are None / False)."""
@@ -55,6 +63,7 @@ class Model:
     deformation: ElasticDeformation | None  # when effects.elastic_deformation
     hydrodynamic: bool  # Reynolds solved (effect on and speed > 0)
     squeeze: SqueezeTerm | None = None  # a transient step's squeeze term, None for a steady solve
+    load: AppliedLoad | None = None  # F(z) of a contact with mass and spring; None: operating.force
 
     @classmethod
     def assemble(cls, scene: Scene, mesh: Mesh | None = None, contact: RoughContact | None = None) -> Model:

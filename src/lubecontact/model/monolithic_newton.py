@@ -50,7 +50,7 @@ from lubecontact.model.fluid_film import fluid_faces, fluid_film
 from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.complementarity import fischer_burmeister
 from lubecontact.numerics.reynolds import ReynoldsSolution, interior_nodes, reynolds_system, solve_reynolds
-from lubecontact.numerics.reynolds_jacobian import outflow_film_jacobian
+from lubecontact.numerics.reynolds_jacobian import outflow_film_jacobian, squeeze_film_jacobian
 from lubecontact.numerics.transfer import interpolate_field
 from lubecontact.physics.film_estimates import hertz_half_width
 
@@ -113,7 +113,21 @@ class Linearisation:
     contact_slope: np.ndarray  # dp_c/dh, Pa/m (zeros without asperity contact)
     pressure_scale: float  # p_s, Pa
     film_scale: float  # h_s, m
-    smoothing: float = 0.0  # the Fischer-Burmeister smoothing mu of r_p, Pa
+    smoothing: float = 0.0  # relative smoothing of the residual (smoothing_for)
+    load_slope: float = 0.0  # dF/dz of the applied force (Model.load), N/m
+    # (dphi/dp, dphi/d(w/A_ii)) of r_p and the parts of J_pp and J_ph they weight: the
+    # Reynolds matrix A, its diagonal A_ii, the outflow w, dw/dh and dA_ii/dh
+    slopes: tuple | None = None
+    parts: tuple | None = None
+
+    def rebranched(self, slopes: tuple) -> "Linearisation":
+        """The same residual with J_pp and J_ph weighted by other Fischer-Burmeister slopes
+        (those of a nearby point where a pair changed branch)."""
+        d_a, d_b = slopes
+        matrix, scale, w, j_wh, j_sh = self.parts
+        j_pp = (sp.diags(d_a) + sp.diags(d_b / scale) @ matrix).tocsc()
+        j_ph = sp.diags(d_b / scale) @ j_wh - sp.diags(d_b * w / scale**2) @ j_sh  # d(w / A_ii)/dh
+        return dataclasses.replace(self, j_pp=j_pp, j_ph=j_ph, slopes=slopes)
 
     def merit(self) -> float:
         """Half the squared norm of the scaled residual (p by p_s, films by h_s)."""
@@ -125,7 +139,7 @@ class Linearisation:
 
 def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisation:
     """The residual of the module docstring at ``it`` and its Jacobian blocks, the
-    Fischer-Burmeister function smoothed by ``smoothing`` (Pa; complementarity.py)."""
+    Fischer-Burmeister function smoothed by ``smoothing`` x p_s (smoothing_for; complementarity.py)."""
     mesh, scene = model.mesh, model.scene
     force = scene.operating.force
     film = model.undeformed_gap + it.z + it.delta
@@ -137,29 +151,32 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         contact_pressure, contact_slope = model.contact.pressure_and_slope(film)
     pressure = np.zeros(mesh.shape)
     r_p = exact = np.zeros(0)
-    unknown = j_pp = j_ph = reynolds = h_t = k = faces = face_slopes = None
+    unknown = reynolds = h_t = k = faces = face_slopes = slopes = parts = None
     if model.hydrodynamic:
         h_t, k = fluid_film(model, film)
         faces, face_slopes = fluid_faces(model, film)
-        system = reynolds_system(mesh, h_t, k, scene.operating.speed, faces)
+        rate = None if model.squeeze is None else model.squeeze.rate(h_t)
+        system = reynolds_system(mesh, h_t, k, scene.operating.speed, faces, squeeze_rate=rate)
         unknown = system.unknown
         pressure[unknown] = it.pressure[unknown]
         p = pressure[unknown]
+        pressure_scale = max(float(np.max(pressure + contact_pressure)), force / float(np.sum(mesh.nodal_area)))
         scale = system.matrix.diagonal()
         w = system.matrix @ p - system.rhs
         if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
             r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
             exact = r_p
         else:
-            r_p, d_a, d_b = fischer_burmeister(p, w / scale, smoothing)
+            r_p, d_a, d_b = fischer_burmeister(p, w / scale, smoothing * pressure_scale)
             exact = fischer_burmeister(p, w / scale)[0] if smoothing > 0.0 else r_p
-        j_pp = (sp.diags(d_a) + sp.diags(d_b / scale) @ system.matrix).tocsc()
         gap_slope = coefficient_slope = None
-        if face_slopes is None:
+        if face_slopes is None or model.squeeze is not None:
             _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)
         j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, gap_slope,
                                            coefficient_slope)
-        j_ph = sp.diags(d_b / scale) @ j_wh - sp.diags(d_b * w / scale**2) @ j_sh  # d(w / A_ii)/dh
+        if model.squeeze is not None:  # the cell's squeeze outflow dA c0 h_T (docs/physics.md section 14)
+            j_wh = j_wh + squeeze_film_jacobian(mesh, unknown, model.squeeze.coefficient * gap_slope)
+        slopes, parts = (d_a, d_b), (system.matrix, scale, w, j_wh, j_sh)
         # cavitated: the outflow, not the pressure, is the positive partner (a sealed node with
         # p = 0 and no outflow is full of fluid)
         cavitated = np.zeros(mesh.shape, dtype=bool)
@@ -179,8 +196,10 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
     pressure_scale = max(float(np.max(total)), force / float(np.sum(area)))
     if reynolds is not None:
         reynolds.residual = float(np.max(np.abs(exact), initial=0.0)) / pressure_scale
-    return Linearisation(state, r_p, r_delta, scale_h * (state.total_force - force) / force, unknown, j_pp, j_ph,
-                         contact_slope, pressure_scale, scale_h, smoothing)
+    target, load_slope = (force, 0.0) if model.load is None else model.load.force(it.z)
+    lin = Linearisation(state, r_p, r_delta, scale_h * (state.total_force - target) / force, unknown, None, None,
+                        contact_slope, pressure_scale, scale_h, smoothing, load_slope, slopes, parts)
+    return lin if slopes is None else lin.rebranched(slopes)
 
 
 def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None):
@@ -207,7 +226,7 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
     fluid_per_dz = pressure_response(np.ones(mesh.shape))
     stiffness = float(np.sum((fluid_per_dz + lin.contact_slope) * area))  # dF/dz at fixed delta, N/m (< 0)
     if model.deformation is None:
-        dz = (-lin.r_z - weight * float(np.sum(base * area))) / (weight * stiffness)
+        dz = (-lin.r_z - weight * float(np.sum(base * area))) / (weight * (stiffness - lin.load_slope))
         return base + dz * fluid_per_dz, None, dz, stiffness
 
     n = mesh.nx * mesh.ny
@@ -220,12 +239,18 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
     return base + pressure_response(d_delta + dz), d_delta, dz, stiffness
 
 
+def dense_step_serves(model: Model) -> bool:
+    """Whether the Newton's reduced system is solved densely on ``model``'s mesh (at most
+    DENSE_NODES nodes: line contacts), where its steps are cheap and robust."""
+    return model.mesh.nx * model.mesh.ny <= DENSE_NODES
+
+
 def dense_influence(model: Model) -> np.ndarray | None:
     """K as a dense (n, n) matrix from the influence operator's columns, for a deforming
     model of at most DENSE_NODES nodes (line contacts), else None."""
     mesh = model.mesh
     n = mesh.nx * mesh.ny
-    if model.deformation is None or n > DENSE_NODES:
+    if model.deformation is None or not dense_step_serves(model):
         return None
     return np.column_stack([model.deformation(column.reshape(mesh.shape)).ravel() for column in np.eye(n)])
 
@@ -248,7 +273,7 @@ def dense_reduced_solve(model: Model, lin: Linearisation, lu, weight: float, rhs
     matrix[:n, :n] = np.eye(n) - coupled
     matrix[:n, n] = -coupled.sum(axis=1)
     matrix[n, :n] = weight * (area @ response)
-    matrix[n, n] = weight * float(area @ response.sum(axis=1))
+    matrix[n, n] = weight * (float(area @ response.sum(axis=1)) - lin.load_slope)
     y = np.linalg.solve(matrix, rhs)
     if not np.all(np.isfinite(y)):
         raise RuntimeError("the Newton step's dense solve gave non-finite values")
@@ -267,7 +292,8 @@ def krylov_reduced_solve(model: Model, lin: Linearisation, pressure_response, we
     def matvec(y):
         d_delta, dz = y[:n].reshape(mesh.shape), y[n]
         dp = pressure_response(d_delta + dz) + lin.contact_slope * (d_delta + dz)
-        return np.append((d_delta - model.deformation(dp)).ravel(), weight * float(np.sum(dp * area)))
+        return np.append((d_delta - model.deformation(dp)).ravel(),
+                         weight * (float(np.sum(dp * area)) - lin.load_slope * dz))
 
     operator = LinearOperator((n + 1, n + 1), matvec=matvec, dtype=float)
     y, info = gmres(operator, rhs, rtol=forcing, atol=0.0, restart=GMRES_RESTART, maxiter=GMRES_CYCLES)
@@ -301,10 +327,11 @@ def converged(lin: Linearisation, tolerance: float) -> bool:
 
 
 def smoothing_for(lin: Linearisation) -> float:
-    """The Fischer-Burmeister smoothing of the next step, Pa: SMOOTHING_FACTOR times the
-    scaled residual norm times p_s, so it vanishes as the iteration converges (a smoothing
-    Newton method, Chen, Qi & Sun 1998, Math. Comp. 67:519)."""
-    return SMOOTHING_FACTOR * min(1.0, np.sqrt(2.0 * lin.merit())) * lin.pressure_scale
+    """The relative smoothing of the next step: SMOOTHING_FACTOR times the scaled residual
+    norm (at most 1), so it vanishes as the iteration converges (a smoothing Newton method,
+    Chen, Qi & Sun 1998, Math. Comp. 67:519); the Fischer-Burmeister function is smoothed by
+    it times p_s (linearise)."""
+    return SMOOTHING_FACTOR * min(1.0, np.sqrt(2.0 * lin.merit()))
 
 
 def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
@@ -327,26 +354,25 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
             return lin, iteration, stiffness, (
                 f"Newton stalled: the scaled residual norm fell from {np.sqrt(2 * history[-1 - STALL_ITERATIONS]):.3g} "
                 f"only to {np.sqrt(2 * history[-1]):.3g} in {STALL_ITERATIONS} iterations")
+        merit = lin.merit()
         try:
-            d_p, d_delta, dz, stiffness = newton_direction(model, lin, forcing, influence)
+            direction = newton_direction(model, lin, forcing, influence)
+            stiffness = direction[3]
+            accepted, full = line_search(model, it, lin, direction)
+            if accepted is None and full is not None and lin.slopes is not None \
+                    and full.slopes is not None and full.slopes[0].size == lin.slopes[0].size:
+                # a cavitation pair changed branch within the step (its outflow crossed zero
+                # steeply, as in a squeezed cell of low permeability): the generalised Jacobian
+                # of the full step's point, as an active-set method would take it
+                direction = newton_direction(model, lin.rebranched(full.slopes), forcing, influence)
+                accepted, _ = line_search(model, it, lin, direction)
         except RuntimeError as err:
             return lin, iteration, stiffness, f"Newton step {iteration}: {err}"
-        step = longest_film_step(model, lin, d_delta, dz)
-        merit = lin.merit()
-        while True:
-            trial = Iterate(it.pressure + step * d_p, it.delta if d_delta is None else it.delta + step * d_delta,
-                            it.z + step * dz)
-            try:
-                candidate = linearise(model, trial, lin.smoothing)
-                if candidate.merit() <= (1.0 - 2.0 * SUFFICIENT_DECREASE * step) * merit:
-                    break
-            except ValueError:
-                pass
-            step *= 0.5
-            if step < SMALLEST_STEP:
-                return lin, iteration, stiffness, (
-                    f"Newton step {iteration}: no step of the Newton direction down to {SMALLEST_STEP:g} of it lowers "
-                    f"the residual (scaled residual norm {np.sqrt(2 * merit):.3g})")
+        if accepted is None:
+            return lin, iteration, stiffness, (
+                f"Newton step {iteration}: no step of the Newton direction down to {SMALLEST_STEP:g} of it lowers "
+                f"the residual (scaled residual norm {np.sqrt(2 * merit):.3g})")
+        trial, candidate = accepted
         it, lin = trial, candidate
         if smoothing_for(candidate) < SMOOTHING_UPDATE * candidate.smoothing:
             lin = linearise(model, it, smoothing_for(candidate))
@@ -355,6 +381,29 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
     if converged(lin, tolerance):
         return lin, max_iterations, stiffness, ""
     return lin, max_iterations, stiffness, f"{max_iterations} Newton iterations without meeting the tolerances"
+
+
+def line_search(model: Model, it: Iterate, lin: Linearisation, direction):
+    """Armijo backtracking along ``direction`` (newton_direction): ((iterate, its
+    linearisation) of the first step that lowers the merit enough, or None; the
+    linearisation at the longest step tried, or None where it left the model)."""
+    d_p, d_delta, dz, _ = direction
+    step = longest_film_step(model, lin, d_delta, dz)
+    merit = lin.merit()
+    first = None
+    while step >= SMALLEST_STEP:
+        trial = Iterate(it.pressure + step * d_p, it.delta if d_delta is None else it.delta + step * d_delta,
+                        it.z + step * dz)
+        try:
+            candidate = linearise(model, trial, lin.smoothing)
+        except ValueError:
+            candidate = None
+        if candidate is not None:
+            first = candidate if first is None else first
+            if candidate.merit() <= (1.0 - 2.0 * SUFFICIENT_DECREASE * step) * merit:
+                return (trial, candidate), first
+        step *= 0.5
+    return None, first
 
 
 def dry_position(model: Model, delta: np.ndarray) -> float:
@@ -506,7 +555,7 @@ def monolithic_solve(model: Model, initial: WarmStart | None = None, tolerance: 
     return state, Diagnostics(
         iterations=iterations,
         deformation_residual=0.0 if lin.r_delta is None else float(np.max(np.abs(lin.r_delta))),
-        force_residual=scene.operating.force - state.total_force,
+        force_residual=-lin.r_z * scene.operating.force / lin.film_scale,
         reynolds_residual=0.0 if state.reynolds is None else float(state.reynolds.residual),
         converged=not failure,
         stiffness=None if stiffness is None else -stiffness,
@@ -515,8 +564,8 @@ def monolithic_solve(model: Model, initial: WarmStart | None = None, tolerance: 
 
 
 def finishes(model: Model) -> bool:
-    """Whether one Newton can take over a steady solve of ``model`` (not JFO, not a step)."""
-    return model.scene.effects.cavitation != "jfo" and model.squeeze is None
+    """Whether one Newton can take over a solve of ``model`` (not JFO)."""
+    return model.scene.effects.cavitation != "jfo"
 
 
 def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
@@ -528,7 +577,7 @@ def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
     if diagnostics.converged or not finishes(model):
         return state, diagnostics, ""
     attempts = [("from its last state", WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure), False)]
-    if model.mesh.nx * model.mesh.ny <= DENSE_NODES:
+    if dense_step_serves(model):
         attempts.append(("from a cold start", None, True))
     why = diagnostics.failure or "its deformation change did not fall below the tolerance"
     for how, start, continuation in attempts:

@@ -74,3 +74,13 @@ def outflow_film_jacobian(mesh, pressure, unknown, speed, face_slopes: FaceFilm 
         (y_a, y_b, 0.5 * dky_a * gy, 0.5 * dky_b * gy, 1.0, 1.0),
     ])
     return outflow, diagonal
+
+
+def squeeze_film_jacobian(mesh, unknown, rate_slope) -> sp.csr_matrix:
+    """d w / d h of a transient step's squeeze outflow dA dh_T/dt (reynolds.reynolds_system,
+    docs/physics.md section 14): (number of unknowns, number of nodes), one entry a row,
+    dA d(rate)/dh at the node itself; ``rate_slope`` (ny, nx) is d(dh_T/dt)/dh, 1/s
+    (c0 dh_T/dh for BDF)."""
+    rows = np.flatnonzero(unknown.ravel())
+    values = (mesh.nodal_area * rate_slope).ravel()[rows]
+    return sp.csr_matrix((values, (np.arange(rows.size), rows)), shape=(rows.size, unknown.size))

@@ -574,15 +574,35 @@ class Motion(_Section):
     error_bar: bool = _field(
         False, _Flag(), "run again at tolerance/10 and report reconnect_time's time-integration error (twice the cost)"
     )
+    mass: float = _field(0.0, _nonnegative("kg"), "moving mass of the contact (0: massless, in force balance at every instant)")
+    spring_stiffness: float = _field(
+        0.0, _nonnegative("N/m"), "stiffness of the connector's spring; operating.force is its preload at the start"
+    )
+    vibration: str = _field(
+        "none", _Choice(("none", "sine", "half_sine_shock")),
+        "normal base excitation of the connector: none | sine | half_sine_shock (needs motion.mass > 0)",
+    )
+    vibration_acceleration: float = _field(
+        0.0, _nonnegative("m/s^2"), "peak acceleration of the base excitation, normal to the contact (toward the block)"
+    )
+    vibration_frequency: float = _field(100.0, _positive("Hz"), "sine: frequency of the base excitation")
+    shock_duration: float = _field(1.0e-3, _positive("s"), "half_sine_shock: duration of the half sine")
+
+    # keys added after scenes were written: left out at their defaults (to_dict), so no hash changes
+    DYNAMICS_KEYS = ("mass", "spring_stiffness", "vibration", "vibration_acceleration", "vibration_frequency",
+                     "shock_duration")
 
     def to_dict(self):
-        """None for the default motion; ``error_bar`` left out when off, so scenes written
-        before the key keep their hash."""
+        """None for the default motion; ``error_bar`` and the dynamics keys left out at their
+        defaults, so scenes written before them keep their hash."""
         if self == Motion():
             return None
         data = super().to_dict()
         if not self.error_bar:
             del data["error_bar"]
+        for key in self.DYNAMICS_KEYS:
+            if data[key] == getattr(Motion, key):
+                del data[key]
         return data
 
 

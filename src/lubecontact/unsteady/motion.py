@@ -110,9 +110,21 @@ def motion_problems(scene) -> list[str]:
             "effects.cavitation = 'jfo': the transient's squeeze term is built on the Reynolds condition so far "
             "(its film-content history is not yet carried); allowed: 'reynolds' or 'none' with a motion"
         )
-    if scene.solver.method == "newton" and scene.motion.kind != "steady":
+    m = scene.motion
+    if (m.mass > 0.0 or m.spring_stiffness > 0.0) and scene.mesh.ny > 1:
         problems.append(
-            "solver.method = 'newton': the one-Newton solver serves steady solves so far (its time stepping is open "
-            "work); allowed: 'nested' with a motion"
+            f"motion.mass = {m.mass:g} kg, motion.spring_stiffness = {m.spring_stiffness:g} N/m on a {scene.mesh.nx} x "
+            f"{scene.mesh.ny} mesh: a contact with mass or spring is stepped by the one Newton, whose step serves line "
+            "contacts so far; allowed: mesh.ny = 1, or mass and spring_stiffness 0"
+        )
+    if m.vibration != "none" and (m.mass == 0.0 or m.vibration_acceleration == 0.0):
+        problems.append(
+            f"motion.vibration = {m.vibration!r} acts on the contact through its mass: it needs motion.mass > 0 "
+            f"(is {m.mass:g} kg) and motion.vibration_acceleration > 0 (is {m.vibration_acceleration:g} m/s^2)"
+        )
+    if scene.solver.method == "newton" and scene.motion.kind != "steady" and scene.mesh.ny > 1:
+        problems.append(
+            "solver.method = 'newton' with a motion on a 2-D mesh: the one Newton steps line contacts so far (on 2-D "
+            "meshes its step is an unpreconditioned GMRES solve); allowed: 'nested', or mesh.ny = 1"
         )
     return problems

@@ -1,0 +1,100 @@
+"""The contact as a mass on its spring (unsteady/dynamics.py, docs/physics.md section 22)
+against independent truths: a dry contact struck lightly rings at sqrt(k/m), k the contact
+stiffness measured by two steady solves (and k + k_s with a spring); a light contact follows
+the massless force balance; the excitations and the applied force in closed form."""
+
+import math
+
+import numpy as np
+import pytest
+
+import lubecontact as lc
+from lubecontact.unsteady.dynamics import BaseExcitation, Dynamics
+
+TABLE1 = "config/scenes/table1.yaml"
+# Table 1 dry, at rest, as a 51-node line contact (elastic, rough)
+DRY_LINE = {"mesh.ny": 1, "mesh.nx": 51, "effects.hydrodynamics": False, "operating.speed": 0.0}
+MASS = 1e-4  # kg
+# a half-sine shock short against the ringing period (28 us at 5 N): the contact is struck,
+# then rings freely; 1000 m/s^2 moves it by ~5 nm, 1 % of sigma (a linear response)
+STRUCK = {**DRY_LINE, "motion.kind": "steady", "motion.mass": MASS, "motion.vibration": "half_sine_shock",
+          "motion.vibration_acceleration": 1000.0, "motion.shock_duration": 2e-6, "motion.duration": 1.5e-4,
+          "motion.tolerance": 1e-6}
+
+
+def contact_stiffness() -> float:
+    """-dF/dz of the dry contact, N/m, by a central difference of two steady solves."""
+    z = [lc.solve(lc.load_scene(TABLE1, {**DRY_LINE, "operating.force": f}))["separation"].item() for f in (4.95, 5.05)]
+    return 0.1 / (z[0] - z[1])
+
+
+def ringing_period(series) -> float:
+    """Mean period of the free oscillation after the shock, from the upward crossings of z's
+    mean over the last half, each located by linear interpolation between levels."""
+    t, z = series["time"].values, series["separation"].values
+    free = t > 2 * STRUCK["motion.shock_duration"]
+    t, z = t[free], z[free] - np.mean(z[free][free.sum() // 2:])
+    up = np.flatnonzero((z[:-1] < 0.0) & (z[1:] >= 0.0))
+    crossings = t[up] - z[up] * (t[up + 1] - t[up]) / (z[up + 1] - z[up])
+    assert crossings.size >= 3, crossings
+    return float(np.mean(np.diff(crossings)))
+
+
+@pytest.fixture(scope="module")
+def stiffness():
+    return contact_stiffness()
+
+
+@pytest.mark.parametrize("spring_ratio", [0.0, 1.0])
+def test_struck_dry_contact_rings_at_sqrt_k_over_m(stiffness, spring_ratio):
+    spring = spring_ratio * stiffness
+    series = lc.transient(lc.load_scene(TABLE1, {**STRUCK, "motion.spring_stiffness": spring}), progress=False)
+    assert series["converged"].item() == 1, series.attrs["notes"]
+    expected = 2.0 * math.pi * math.sqrt(MASS / (stiffness + spring))
+    assert ringing_period(series) == pytest.approx(expected, rel=0.01)
+
+
+def test_a_light_contact_follows_the_massless_force_balance():
+    stop = {"mesh.ny": 1, "mesh.nx": 31, "operating.speed": 1.0, "motion.kind": "stop", "motion.duration": 0.03}
+    massless = lc.transient(lc.load_scene(TABLE1, stop), progress=False)
+    # 1e-9 kg rings at ~0.1 us on this contact: far faster than anything the stop does
+    light = lc.transient(lc.load_scene(TABLE1, {**stop, "motion.mass": 1e-9}), progress=False)
+    assert light["converged"].item() == 1 and massless["converged"].item() == 1
+    assert light["reconnect_time"].item() == pytest.approx(massless["reconnect_time"].item(), rel=0.05)
+    z = np.interp(massless.time.values, light.time.values, light["separation"].values)
+    assert np.max(np.abs(z - massless["separation"].values)) < 0.02 * 5e-7
+
+
+def test_excitations_in_closed_form():
+    sine = BaseExcitation("sine", 10.0, 50.0, 1e-3)
+    assert sine.acceleration_at(0.005) == pytest.approx(10.0) and sine.max_step(0.0) == pytest.approx(1 / 2000)
+    shock = BaseExcitation("half_sine_shock", 500.0, 50.0, 0.011)  # EIA-364-27: 50 g, 11 ms
+    assert shock.acceleration_at(0.0055) == pytest.approx(500.0) and shock.acceleration_at(0.02) == 0.0
+    assert shock.breakpoints() == [0.011] and shock.max_step(0.02) == math.inf
+
+
+def test_applied_force_is_the_spring_plus_inertia():
+    scene = lc.load_scene(TABLE1, {"mesh.ny": 1, "motion.mass": 2e-3, "motion.spring_stiffness": 1e4,
+                                   "motion.vibration": "sine", "motion.vibration_acceleration": 100.0})
+    dynamics = Dynamics.from_scene(scene)
+    # BDF1 with dt = 1e-3 from z = 1e-6, v = 2e-3 at the last level: v = (z - 1e-6)/dt,
+    # a = (v - 2e-3)/dt
+    load = dynamics.load(0.0025, 0.0, [1e3, -1e3], [1e-6], [2e-3])
+    z = 3e-6
+    v, a = (z - 1e-6) / 1e-3, ((z - 1e-6) / 1e-3 - 2e-3) / 1e-3
+    force, slope = load.force(z)
+    assert force == pytest.approx(5.0 + 1e4 * z + 2e-3 * (a + 100.0))
+    assert slope == pytest.approx(1e4 + 2e-3 * 1e6) and load.velocity(z) == pytest.approx(v)
+    assert Dynamics.from_scene(lc.load_scene(TABLE1)) is None  # the massless contact: today's model
+
+
+def test_dynamics_keys_keep_old_hashes_and_bad_ones_are_refused():
+    stop = lc.load_scene(TABLE1, {"motion.kind": "stop"})
+    assert "mass" not in stop.canonical_yaml() and "vibration" not in stop.canonical_yaml()
+    assert lc.load_scene(TABLE1, {"motion.kind": "stop", "motion.mass": 0.0}).hash == stop.hash
+    with pytest.raises(lc.SceneError, match="motion.mass = -1"):
+        lc.load_scene(TABLE1, {"motion.mass": -1})
+    with pytest.raises(lc.SceneError, match="line contacts"):
+        lc.transient(lc.load_scene(TABLE1, {"motion.kind": "stop", "motion.mass": 1e-4}), progress=False)
+    with pytest.raises(lc.SceneError, match="needs motion.mass > 0"):
+        lc.transient(lc.load_scene(TABLE1, {"mesh.ny": 1, "motion.vibration": "sine"}), progress=False)
