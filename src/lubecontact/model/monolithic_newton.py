@@ -46,12 +46,13 @@ from scipy.sparse.linalg import LinearOperator, gmres, splu
 from lubecontact.model.auto_effects import decreasing_root, operating_point
 from lubecontact.model.coupling import Diagnostics, WarmStart
 from lubecontact.model.evaluation import film_scale
-from lubecontact.model.fluid_film import fluid_faces, fluid_film
+from lubecontact.model.fluid_film import fluid_faces, fluid_film, yield_stress_law
 from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.complementarity import fischer_burmeister
 from lubecontact.numerics.reynolds import ReynoldsSolution, interior_nodes, reynolds_system, solve_reynolds
 from lubecontact.numerics.reynolds_jacobian import outflow_film_jacobian
 from lubecontact.numerics.transfer import interpolate_field
+from lubecontact.numerics.yield_stress_reynolds import yield_stress_outflow
 from lubecontact.physics.film_estimates import hertz_half_width
 
 # Armijo's sufficient decrease and the shortest step tried (Kelley 1995, "Iterative Methods
@@ -147,6 +148,12 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         p = pressure[unknown]
         scale = system.matrix.diagonal()
         w = system.matrix @ p - system.rhs
+        grease = yield_stress_law(model)
+        if grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
+            _, _, content_slope, nodal_slope = fluid_film(model, film, slopes=True)
+            grease_flow = yield_stress_outflow(mesh, system, pressure, k, h_t, content_slope, scene.operating.speed,
+                                               grease, faces, face_slopes, nodal_slope)
+            w, scale = grease_flow.outflow, grease_flow.scale
         if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
             r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
             exact = r_p
@@ -160,6 +167,8 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, gap_slope,
                                            coefficient_slope)
         j_ph = sp.diags(d_b / scale) @ j_wh - sp.diags(d_b * w / scale**2) @ j_sh  # d(w / A_ii)/dh
+        if grease is not None:  # A depends on p: its tangent, and the film slope of the law
+            j_pp, j_ph = grease_flow.residual_jacobians(d_a, d_b)
         # cavitated: the outflow, not the pressure, is the positive partner (a sealed node with
         # p = 0 and no outflow is full of fluid)
         cavitated = np.zeros(mesh.shape, dtype=bool)

@@ -110,6 +110,13 @@ def motion_problems(scene) -> list[str]:
             "effects.cavitation = 'jfo': the transient's squeeze term is built on the Reynolds condition so far "
             "(its film-content history is not yet carried); allowed: 'reynolds' or 'none' with a motion"
         )
+    # A grease needs the one Newton (docs/physics.md section 21), whose time stepping is open
+    # work on another branch: when it lands, this refusal goes with the one below.
+    if scene.lubricant.rheology != "newtonian" and scene.motion.kind != "steady":
+        problems.append(
+            f"lubricant.rheology = {scene.lubricant.rheology!r}: a grease is solved by the one Newton, which serves "
+            "steady solves so far (its time stepping is open work); allowed: 'newtonian' with a motion"
+        )
     if scene.solver.method == "newton" and scene.motion.kind != "steady":
         problems.append(
             "solver.method = 'newton': the one-Newton solver serves steady solves so far (its time stepping is open "
