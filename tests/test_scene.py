@@ -327,3 +327,38 @@ def test_pickles_for_worker_processes():
         load_scene({"mesh": {"ny": 2}})
     again = pickle.loads(pickle.dumps(info.value))
     assert again.problems == info.value.problems and str(again) == str(info.value)
+
+
+# --- a grease (docs/physics.md section 21) ---------------------------------------------------
+
+TABLE1_HASH = "8faf877ec8828574"  # config/scenes/table1.yaml before the rheology keys existed
+
+
+def test_rheology_keys_at_their_defaults_leave_the_hash_alone():
+    scene = load_scene(TABLE1_FILE, {"lubricant.rheology": "newtonian", "lubricant.creep_viscosity": 1e4})
+    assert scene.hash == load_scene(TABLE1_FILE).hash == TABLE1_HASH
+    assert "rheology" not in scene.canonical_yaml()
+    grease = load_scene(TABLE1_FILE, {"lubricant.rheology": "bingham", "lubricant.yield_stress": 300.0})
+    assert grease.hash != TABLE1_HASH and "yield_stress: 300.0" in grease.canonical_yaml()
+    assert load_scene(grease.to_dict()) == grease  # the canonical form loads back
+
+
+@pytest.mark.parametrize("overrides, words", [
+    ({"lubricant.yield_stress": 300.0}, ["lubricant.yield_stress = 300.0", "'newtonian'"]),
+    ({"lubricant.flow_index": 0.8}, ["lubricant.flow_index = 0.8", "herschel_bulkley"]),
+    ({"lubricant.creep_viscosity": 1e5}, ["lubricant.creep_viscosity", "rheology"]),
+    ({"lubricant.rheology": "bingham"}, ["lubricant.yield_stress = 0.0", "> 0 Pa"]),
+    ({"lubricant.rheology": "bingham", "lubricant.yield_stress": 300.0, "lubricant.flow_index": 0.8},
+     ["lubricant.flow_index = 0.8", "herschel_bulkley"]),
+    ({"lubricant.rheology": "bingham", "lubricant.yield_stress": 300.0, "lubricant.creep_viscosity": 0.05},
+     ["lubricant.creep_viscosity = 0.05", "> lubricant.viscosity"]),
+    ({"lubricant.rheology": "herschel_bulkley", "lubricant.yield_stress": 300.0, "effects.cavitation": "jfo"},
+     ["effects.cavitation = 'jfo'", "'reynolds' or 'none'"]),
+    ({"lubricant.rheology": "grease"}, ["lubricant.rheology", "'grease'", "herschel_bulkley"]),
+    ({"lubricant.rheology": "bingham", "lubricant.yield_stress": -1.0}, ["lubricant.yield_stress", "-1.0"]),
+])
+def test_a_grease_that_does_not_fit_together_is_refused_by_name(overrides, words):
+    with pytest.raises(SceneError) as err:
+        load_scene(TABLE1_FILE, overrides)
+    for word in words:
+        assert word in str(err.value)

@@ -169,6 +169,10 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
     where there is one (nested_start). ``tolerance`` overrides the scene's.
     """
     scene = model.scene
+    if scene.lubricant.rheology != "newtonian":
+        raise SolveError(f"lubricant.rheology = {scene.lubricant.rheology!r}: the nested solver's Reynolds solve takes a "
+                         "coefficient independent of the pressure; a grease is solved by one Newton "
+                         "(model/monolithic_newton.py, docs/physics.md section 21)")
     tol = scene.solver.tolerance if tolerance is None else tolerance
     force = scene.operating.force
     max_iterations = scene.solver.max_iterations

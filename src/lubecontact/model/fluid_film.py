@@ -20,6 +20,7 @@ from lubecontact.physics.flow_factors import (
 )
 from lubecontact.physics.percolation import face_film
 from lubecontact.physics.shear_factors import couette_gap
+from lubecontact.physics.yield_stress_flow import YieldStressLaw
 
 # Where the mean planes interpenetrate (h < 0) the fluid sees the gap frozen at its h = 0
 # value (h_T = sigma/sqrt(2 pi)). For the film content there is a physical reason: below the
@@ -51,6 +52,15 @@ def coefficient_law(model: Model):
     law = poiseuille_coefficient_and_slope if model.contact is None else percolating_coefficient_and_slope
     sigma = None if model.contact is None else model.contact.sigma
     return lambda h: law(h, sigma, scene.lubricant.viscosity, scene.effects.flow_factors)
+
+
+def yield_stress_law(model: Model) -> YieldStressLaw | None:
+    """The flow law of a grease (lubricant.rheology bingham or herschel_bulkley,
+    docs/physics.md section 21), None for a Newtonian lubricant."""
+    lubricant = model.scene.lubricant
+    if lubricant.rheology == "newtonian":
+        return None
+    return YieldStressLaw(lubricant.viscosity, lubricant.yield_stress, lubricant.flow_index, lubricant.creep_viscosity)
 
 
 def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):

@@ -46,12 +46,13 @@ from scipy.sparse.linalg import LinearOperator, gmres, splu
 from lubecontact.model.auto_effects import decreasing_root, operating_point
 from lubecontact.model.coupling import Diagnostics, WarmStart
 from lubecontact.model.evaluation import film_scale
-from lubecontact.model.fluid_film import fluid_faces, fluid_film
+from lubecontact.model.fluid_film import fluid_faces, fluid_film, yield_stress_law
 from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.complementarity import fischer_burmeister
 from lubecontact.numerics.reynolds import ReynoldsSolution, interior_nodes, reynolds_system, solve_reynolds
-from lubecontact.numerics.reynolds_jacobian import outflow_film_jacobian, squeeze_film_jacobian
+from lubecontact.numerics.reynolds_jacobian import LinearOutflow, outflow_film_jacobian, squeeze_film_jacobian
 from lubecontact.numerics.transfer import interpolate_field
+from lubecontact.numerics.yield_stress_reynolds import yield_stress_outflow
 from lubecontact.physics.film_estimates import hertz_half_width
 
 # Armijo's sufficient decrease and the shortest step tried (Kelley 1995, "Iterative Methods
@@ -115,18 +116,15 @@ class Linearisation:
     film_scale: float  # h_s, m
     smoothing: float = 0.0  # relative smoothing of the residual (smoothing_for)
     load_slope: float = 0.0  # dF/dz of the applied force (Model.load), N/m
-    # (dphi/dp, dphi/d(w/A_ii)) of r_p and the parts of J_pp and J_ph they weight: the
-    # Reynolds matrix A, its diagonal A_ii, the outflow w, dw/dh and dA_ii/dh
+    # (dphi/dp, dphi/d(w/A_ii)) of r_p, and the outflow whose residual_jacobians they weight
+    # (reynolds_jacobian.LinearOutflow, or a grease's yield_stress_reynolds.YieldStressOutflow)
     slopes: tuple | None = None
-    parts: tuple | None = None
+    parts: object | None = None
 
     def rebranched(self, slopes: tuple) -> "Linearisation":
         """The same residual with J_pp and J_ph weighted by other Fischer-Burmeister slopes
         (those of a nearby point where a pair changed branch)."""
-        d_a, d_b = slopes
-        matrix, scale, w, j_wh, j_sh = self.parts
-        j_pp = (sp.diags(d_a) + sp.diags(d_b / scale) @ matrix).tocsc()
-        j_ph = sp.diags(d_b / scale) @ j_wh - sp.diags(d_b * w / scale**2) @ j_sh  # d(w / A_ii)/dh
+        j_pp, j_ph = self.parts.residual_jacobians(*slopes)
         return dataclasses.replace(self, j_pp=j_pp, j_ph=j_ph, slopes=slopes)
 
     def merit(self) -> float:
@@ -163,6 +161,12 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         pressure_scale = max(float(np.max(pressure + contact_pressure)), force / float(np.sum(mesh.nodal_area)))
         scale = system.matrix.diagonal()
         w = system.matrix @ p - system.rhs
+        grease = yield_stress_law(model)
+        if grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
+            _, _, content_slope, nodal_slope = fluid_film(model, film, slopes=True)
+            grease_flow = yield_stress_outflow(mesh, system, pressure, k, h_t, content_slope, scene.operating.speed,
+                                               grease, faces, face_slopes, nodal_slope)
+            w, scale = grease_flow.outflow, grease_flow.scale
         if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
             r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
             exact = r_p
@@ -176,7 +180,8 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
                                            coefficient_slope)
         if model.squeeze is not None:  # the cell's squeeze outflow dA c0 h_T (docs/physics.md section 14)
             j_wh = j_wh + squeeze_film_jacobian(mesh, unknown, model.squeeze.coefficient * gap_slope)
-        slopes, parts = (d_a, d_b), (system.matrix, scale, w, j_wh, j_sh)
+        slopes = (d_a, d_b)
+        parts = grease_flow if grease is not None else LinearOutflow(system.matrix, scale, w, j_wh, j_sh)
         # cavitated: the outflow, not the pressure, is the positive partner (a sealed node with
         # p = 0 and no outflow is full of fluid)
         cavitated = np.zeros(mesh.shape, dtype=bool)

@@ -103,7 +103,7 @@ def interior_nodes(shape: tuple[int, int], line: bool) -> np.ndarray:
     return interior
 
 
-def _face_transmissibilities(mesh, coefficient, faces=None):
+def face_transmissibilities(mesh, coefficient, faces=None):
     """T of x faces (ny, nx-1) and y faces (ny-1, nx; empty in line mode), m^3/(Pa s): means
     of the nodal k, or ``faces`` (percolation.FaceFilm) evaluated at the faces."""
     if faces is not None:
@@ -144,7 +144,7 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
     _check_fields(mesh, expected_gap, coefficient)
-    tx, ty = _face_transmissibilities(mesh, coefficient, faces)
+    tx, ty = face_transmissibilities(mesh, coefficient, faces)
 
     diagonal = np.zeros(mesh.shape)
     diagonal[:, :-1] += tx
@@ -337,7 +337,7 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) 
     _check_fields(mesh, expected_gap, coefficient)
     p = solution.pressure
     full = interior_nodes(mesh.shape, mesh.line) & ~solution.cavitated
-    tx, ty = _face_transmissibilities(mesh, coefficient, faces)
+    tx, ty = face_transmissibilities(mesh, coefficient, faces)
     qx = tx * (p[:, :-1] - p[:, 1:]) + couette_face_flux(mesh, expected_gap, speed, faces)
     qy = ty * (p[:-1, :] - p[1:, :])
     total = 0.0

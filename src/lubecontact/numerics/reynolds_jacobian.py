@@ -14,6 +14,8 @@ cell b -flux_f. The matrix J[i, j] = d w_i / d h_j has at most seven entries a r
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -84,3 +86,26 @@ def squeeze_film_jacobian(mesh, unknown, rate_slope) -> sp.csr_matrix:
     rows = np.flatnonzero(unknown.ravel())
     values = (mesh.nodal_area * rate_slope).ravel()[rows]
     return sp.csr_matrix((values, (np.arange(rows.size), rows)), shape=(rows.size, unknown.size))
+
+
+@dataclass(frozen=True)
+class LinearOutflow:
+    """The outflow w = A p - b of a Newtonian film (reynolds.reynolds_system) at one film, with
+    what the one Newton's residual phi(p, w/A_ii) needs for its Jacobians (docs/physics.md
+    section 20): A, its diagonal A_ii, w, dw/dh and dA_ii/dh (outflow_film_jacobian, plus a
+    step's squeeze_film_jacobian)."""
+
+    matrix: sp.csr_matrix
+    scale: np.ndarray
+    outflow: np.ndarray
+    outflow_film: sp.csr_matrix
+    scale_film: sp.csr_matrix
+
+    def residual_jacobians(self, slope_pressure, slope_flow) -> tuple[sp.csc_matrix, sp.csr_matrix]:
+        """(dR/dp, dR/dh) of R = phi(p, w/A_ii) whose slopes in its two arguments are
+        ``slope_pressure`` and ``slope_flow`` (n,): D_a + D_b A/A_ii, and D_b d(w/A_ii)/dh with
+        d(w/s) = dw/s - w ds/s^2."""
+        flow = sp.diags(slope_flow / self.scale)
+        pressure = (sp.diags(slope_pressure) + flow @ self.matrix).tocsc()
+        film = flow @ self.outflow_film - sp.diags(slope_flow * self.outflow / self.scale**2) @ self.scale_film
+        return pressure, film.tocsr()

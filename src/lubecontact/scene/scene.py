@@ -383,6 +383,9 @@ class Roughness(_Section):
 
 
 _D341_VISCOSITY = _Real("mm^2/s", low=D341_LOWEST_VISCOSITY, low_open=False)
+# The lubricant keys of a yield-stress grease (docs/physics.md section 21), left out of the
+# canonical form at their defaults.
+RHEOLOGY_KEYS = ("rheology", "yield_stress", "flow_index", "creep_viscosity")
 
 
 @dataclass(frozen=True)
@@ -410,13 +413,30 @@ class Lubricant(_Section):
     pour_point: float | None = _field(
         None, _NotGivenOr(_Real("degC")), "datasheet pour point (optional): operating.temperature must be above it"
     )
+    # A grease (docs/physics.md section 21): viscosity is then the plastic viscosity (bingham)
+    # or the consistency K in Pa s^n (herschel_bulkley).
+    rheology: str = _field(
+        "newtonian", _Choice(("newtonian", "bingham", "herschel_bulkley")),
+        "flow law of the Reynolds equation: newtonian, or a yield-stress grease (solved by one Newton)",
+    )
+    yield_stress: float = _field(0.0, _nonnegative("Pa"), "yield stress tau_y of bingham / herschel_bulkley")
+    flow_index: float = _field(1.0, _positive("1"), "herschel_bulkley flow index n (viscosity is then K in Pa s^n)")
+    # ASTM D1092 measures a grease's apparent viscosity from 25 to 100 000 P at 0.1 1/s: the
+    # default is the top of that range, 1e4 Pa s.
+    creep_viscosity: float = _field(
+        1.0e4, _positive("Pa s"), "viscosity with which a grease creeps below its yield stress (bi-viscous law)"
+    )
 
     def to_dict(self):
         """Keys not given left out (scenes without a datasheet keep their hash); with a
-        datasheet, no viscosity (it comes from the datasheet when the dict is loaded again)."""
+        datasheet, no viscosity (it comes from the datasheet when the dict is loaded again);
+        the rheology keys left out at their defaults (a Newtonian lubricant keeps its hash)."""
         data = {k: v for k, v in super().to_dict().items() if v is not None}
         if self.kinematic_viscosity_40 is not None:
             del data["viscosity"]
+        for key in RHEOLOGY_KEYS:
+            if getattr(self, key) == getattr(Lubricant, key):
+                del data[key]
         return data
 
     def canonical_dict(self):
@@ -989,6 +1009,40 @@ def _at_temperature(sections: dict, raw, problems: list[str]):
     return replace(lubricant, viscosity=viscosity)
 
 
+def _rheology_problems(lubricant, effects) -> list[str]:
+    """The yield-stress keys (docs/physics.md section 21) that do not fit together."""
+    if lubricant is None:
+        return []
+    law, problems = lubricant.rheology, []
+    if law == "newtonian":
+        problems += [
+            f"lubricant.{key} = {getattr(lubricant, key)!r}: a key of a yield-stress grease; allowed: only with "
+            f"lubricant.rheology 'bingham' or 'herschel_bulkley' (got 'newtonian')"
+            for key in RHEOLOGY_KEYS[1:] if getattr(lubricant, key) != getattr(Lubricant, key)
+        ]
+        return problems
+    if lubricant.yield_stress == 0.0:
+        problems.append(
+            f"lubricant.yield_stress = 0.0 with lubricant.rheology = {law!r}: without a yield stress Bingham is the "
+            f"Newtonian law, and Herschel-Bulkley a power law whose flux is singular at rest; allowed: > 0 Pa"
+        )
+    if law == "bingham" and lubricant.flow_index != 1.0:
+        problems.append(f"lubricant.flow_index = {lubricant.flow_index!r}: Bingham's is 1; allowed: only with "
+                        f"lubricant.rheology 'herschel_bulkley'")
+    if law == "bingham" and lubricant.creep_viscosity <= lubricant.viscosity:
+        problems.append(
+            f"lubricant.creep_viscosity = {lubricant.creep_viscosity!r}: not above lubricant.viscosity = "
+            f"{lubricant.viscosity!r}, so the grease would flow faster below its yield stress than above; allowed: "
+            f"> lubricant.viscosity"
+        )
+    if effects is not None and effects.cavitation == "jfo":
+        problems.append(
+            f"effects.cavitation = 'jfo' with lubricant.rheology = {law!r}: a grease is solved by one Newton, "
+            f"which has the Reynolds condition and full Sommerfeld so far; allowed: 'reynolds' or 'none'"
+        )
+    return problems
+
+
 def _cross_problems(s: dict) -> list[str]:
     """Rules between keys; each runs only if its sections are valid."""
     problems = []
@@ -1013,6 +1067,7 @@ def _cross_problems(s: dict) -> list[str]:
             "solver.method = 'newton' with effects.cavitation = 'jfo': the one-Newton solver has the Reynolds "
             "condition and full Sommerfeld so far; allowed: 'nested' with jfo, or cavitation 'reynolds' or 'none'"
         )
+    problems.extend(_rheology_problems(s.get("lubricant"), effects))
     motion = s.get("motion")
     if motion is not None and motion.kind == "table" and motion.table is None:
         problems.append("motion.kind = 'table': motion.table is missing; allowed: rows [t (s), U (m/s)] or a file")

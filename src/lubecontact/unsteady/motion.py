@@ -110,6 +110,13 @@ def motion_problems(scene) -> list[str]:
             "effects.cavitation = 'jfo': the transient's squeeze term is built on the Reynolds condition so far "
             "(its film-content history is not yet carried); allowed: 'reynolds' or 'none' with a motion"
         )
+    # A grease needs the one Newton (docs/physics.md section 21); its step's Jacobian does not
+    # carry the squeeze term yet (the Newtonian one does: section 20)
+    if scene.lubricant.rheology != "newtonian" and scene.motion.kind != "steady":
+        problems.append(
+            f"lubricant.rheology = {scene.lubricant.rheology!r}: a grease is solved by the one Newton, whose time step "
+            "does not yet linearise a grease's squeeze term; allowed: 'newtonian' with a motion"
+        )
     m = scene.motion
     if (m.mass > 0.0 or m.spring_stiffness > 0.0) and scene.mesh.ny > 1:
         problems.append(

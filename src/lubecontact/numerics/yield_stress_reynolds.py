@@ -1,0 +1,117 @@
+"""The finite-volume Reynolds outflow of a yield-stress lubricant and its Jacobian
+(docs/physics.md section 21).
+
+With a grease the Poiseuille flux of a face depends on the face's own pressure gradient
+(physics/yield_stress_flow.py). On the face between nodes a and b (x faces; y faces alike
+with dy) the gradient along the face normal is G_f = (p_b - p_a)/dx (in 2-D the tangential
+gradient is neglected: each face sees the gradient across it), and the face flux is
+
+    flux_f = T_f r_f (p_a - p_b) + (U/2) dy h_T,f,      r_f = r(G_f, s_f),
+
+T_f the Newtonian transmissibility (numerics/reynolds.py), r the law's reduction factor
+k_eff(G, s)/(s^3/(12 K)) and s_f = (h_T,a + h_T,b)/2 the film content of the face (the
+slot the law sees; h itself on smooth surfaces). On rough surfaces r multiplies the
+Patir-Cheng coefficient: an approximation, exact for smooth films. The net outflow of cell i
+is w_i = sum_f (+-) flux_f, as reynolds.reynolds_system's A p - b, now with A = A(p).
+
+Its derivatives: d flux_f/dp_a = -d flux_f/dp_b = T_f d(r G)/dG (the tangent
+transmissibility, >= 0), and d flux_f/dh_a = (1/2)(dk/dh_a (dy/dx) r_f + T_f dr/ds dh_T/dh_a)
+(p_a - p_b) + the Couette slope. The residual of the one-Newton solver divides w by the
+cell's secant diagonal s_i = sum_f T_f r_f, which depends on p and h as well. Each is
+assembled face by face as a sparse matrix (reynolds_jacobian.assembled).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from lubecontact.numerics.reynolds import ReynoldsSystem, face_transmissibilities
+from lubecontact.numerics.reynolds_jacobian import assembled, face_slope_pairs
+from lubecontact.physics.percolation import face_films
+from lubecontact.physics.yield_stress_flow import YieldStressLaw, effective_coefficient
+
+
+@dataclass
+class YieldStressOutflow:
+    """The outflow w (m^3/s) and secant diagonal s (m^3/(Pa s)) of each unknown's cell, with
+    their derivatives in the unknown pressures ((n, n) matrices) and in the film at every
+    node ((n, nodes) matrices)."""
+
+    outflow: np.ndarray
+    scale: np.ndarray
+    outflow_pressure: sp.csc_matrix
+    scale_pressure: sp.csr_matrix
+    outflow_film: sp.csr_matrix
+    scale_film: sp.csr_matrix
+
+    def residual_jacobians(self, slope_pressure, slope_flow) -> tuple[sp.csc_matrix, sp.csr_matrix]:
+        """(dR/dp, dR/dh) of the residual R = phi(p, w/s) whose slopes in its two arguments
+        are ``slope_pressure`` and ``slope_flow`` (n,) (complementarity.fischer_burmeister),
+        with d(w/s) = dw/s - w ds/s^2."""
+        flow = sp.diags(slope_flow / self.scale)
+        level = sp.diags(slope_flow * self.outflow / self.scale**2)
+        pressure = sp.diags(slope_pressure) + flow @ self.outflow_pressure - level @ self.scale_pressure
+        return pressure.tocsc(), (flow @ self.outflow_film - level @ self.scale_film).tocsr()
+
+
+def reduction_factor(gradient, content, law: YieldStressLaw):
+    """(r, dr/dG, dr/ds): k_eff(G, s) over the Newtonian s^3/(12 K) (module docstring)."""
+    newtonian = content**3 / (12.0 * law.consistency)
+    k, k_g, k_s = effective_coefficient(gradient, content, law)
+    return k / newtonian, k_g / newtonian, (k_s - 3.0 * k / content) / newtonian
+
+
+def yield_stress_outflow(mesh, system: ReynoldsSystem, pressure, coefficient, content, content_slope, speed,
+                         law: YieldStressLaw, faces=None, face_slopes=None, coefficient_slope=None
+                         ) -> YieldStressOutflow:
+    """The grease's outflow and Jacobians (module docstring) at ``pressure`` (ny, nx, Pa,
+    zero off the unknowns). ``system``: reynolds.reynolds_system of the same film (its
+    unknowns and right-hand side b); ``coefficient`` k and ``content`` h_T (ny, nx) and
+    dh_T/dh (``content_slope``) at the nodes; ``faces``/``face_slopes`` the face values of
+    rough surfaces (percolation.FaceFilm), else the nodal ``coefficient_slope`` dk/dh."""
+    ny, nx = mesh.shape
+    unknown = system.unknown
+    flat = np.arange(ny * nx).reshape(mesh.shape)
+    tx, ty = face_transmissibilities(mesh, coefficient, faces)
+    sx, sy = face_films(content)
+    slope_pairs = face_slope_pairs(face_slopes, content_slope, coefficient_slope)
+    net = np.zeros(mesh.shape)
+    scale = np.zeros(mesh.shape)
+    flow_p, scale_p, flow_h, scale_h = [], [], [], []
+    directions = (
+        (tx, sx, mesh.dx, mesh.dy / mesh.dx, (slice(None), slice(None, -1)), (slice(None), slice(1, None)),
+         slope_pairs[0][:2]),
+        (ty, sy, mesh.dy, mesh.dx / mesh.dy, (slice(None, -1), slice(None)), (slice(1, None), slice(None)),
+         slope_pairs[1]),
+    )
+    for t, s, spacing, geometry, side_a, side_b, (dk_a, dk_b) in directions:
+        drop = pressure[side_a] - pressure[side_b]
+        r, r_g, r_s = reduction_factor(-drop / spacing, s, law)
+        flux = t * r * drop
+        net[side_a] += flux
+        net[side_b] -= flux
+        scale[side_a] += t * r
+        scale[side_b] += t * r
+        a, b = flat[side_a], flat[side_b]
+        tangent = t * (r - drop / spacing * r_g)  # T d(r G)/dG
+        flow_p.append((a, b, tangent, -tangent, 1.0, -1.0))
+        scale_p.append((a, b, -t * r_g / spacing, t * r_g / spacing, 1.0, 1.0))
+        ds_a, ds_b = 0.5 * content_slope[side_a], 0.5 * content_slope[side_b]
+        dt_a, dt_b = 0.5 * dk_a * geometry, 0.5 * dk_b * geometry
+        flow_h.append((a, b, (dt_a * r + t * r_s * ds_a) * drop, (dt_b * r + t * r_s * ds_b) * drop, 1.0, -1.0))
+        scale_h.append((a, b, dt_a * r + t * r_s * ds_a, dt_b * r + t * r_s * ds_b, 1.0, 1.0))
+    _, _, dg_a, dg_b = slope_pairs[0]
+    couette = 0.5 * speed * mesh.dy
+    flow_h.append((flat[:, :-1], flat[:, 1:], 0.5 * couette * dg_a, 0.5 * couette * dg_b, 1.0, -1.0))
+    columns = flat[unknown]
+    return YieldStressOutflow(
+        outflow=net[unknown] - system.rhs,
+        scale=scale[unknown],
+        outflow_pressure=assembled(mesh, unknown, flow_p)[:, columns].tocsc(),
+        scale_pressure=assembled(mesh, unknown, scale_p)[:, columns],
+        outflow_film=assembled(mesh, unknown, flow_h),
+        scale_film=assembled(mesh, unknown, scale_h),
+    )
