@@ -114,7 +114,7 @@ class Linearisation:
     contact_slope: np.ndarray  # dp_c/dh, Pa/m (zeros without asperity contact)
     pressure_scale: float  # p_s, Pa
     film_scale: float  # h_s, m
-    smoothing: float = 0.0  # relative smoothing of the residual (smoothing_for)
+    smoothing: float = 0.0  # the Fischer-Burmeister smoothing mu of r_p, Pa
     load_slope: float = 0.0  # dF/dz of the applied force (Model.load), N/m
     # (dphi/dp, dphi/d(w/A_ii)) of r_p, and the outflow whose residual_jacobians they weight
     # (reynolds_jacobian.LinearOutflow, or a grease's yield_stress_reynolds.YieldStressOutflow)
@@ -137,7 +137,7 @@ class Linearisation:
 
 def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisation:
     """The residual of the module docstring at ``it`` and its Jacobian blocks, the
-    Fischer-Burmeister function smoothed by ``smoothing`` x p_s (smoothing_for; complementarity.py)."""
+    Fischer-Burmeister function smoothed by ``smoothing`` (Pa; complementarity.py)."""
     mesh, scene = model.mesh, model.scene
     force = scene.operating.force
     film = model.undeformed_gap + it.z + it.delta
@@ -158,7 +158,6 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         unknown = system.unknown
         pressure[unknown] = it.pressure[unknown]
         p = pressure[unknown]
-        pressure_scale = max(float(np.max(pressure + contact_pressure)), force / float(np.sum(mesh.nodal_area)))
         scale = system.matrix.diagonal()
         w = system.matrix @ p - system.rhs
         grease = yield_stress_law(model)
@@ -171,7 +170,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
             r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
             exact = r_p
         else:
-            r_p, d_a, d_b = fischer_burmeister(p, w / scale, smoothing * pressure_scale)
+            r_p, d_a, d_b = fischer_burmeister(p, w / scale, smoothing)
             exact = fischer_burmeister(p, w / scale)[0] if smoothing > 0.0 else r_p
         gap_slope = coefficient_slope = None
         if face_slopes is None or model.squeeze is not None:
@@ -332,11 +331,10 @@ def converged(lin: Linearisation, tolerance: float) -> bool:
 
 
 def smoothing_for(lin: Linearisation) -> float:
-    """The relative smoothing of the next step: SMOOTHING_FACTOR times the scaled residual
-    norm (at most 1), so it vanishes as the iteration converges (a smoothing Newton method,
-    Chen, Qi & Sun 1998, Math. Comp. 67:519); the Fischer-Burmeister function is smoothed by
-    it times p_s (linearise)."""
-    return SMOOTHING_FACTOR * min(1.0, np.sqrt(2.0 * lin.merit()))
+    """The Fischer-Burmeister smoothing of the next step, Pa: SMOOTHING_FACTOR times the
+    scaled residual norm times p_s, so it vanishes as the iteration converges (a smoothing
+    Newton method, Chen, Qi & Sun 1998, Math. Comp. 67:519)."""
+    return SMOOTHING_FACTOR * min(1.0, np.sqrt(2.0 * lin.merit())) * lin.pressure_scale
 
 
 def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
