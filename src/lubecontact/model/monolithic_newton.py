@@ -44,7 +44,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import LinearOperator, gmres, splu
 
 from lubecontact.model.auto_effects import decreasing_root, operating_point
-from lubecontact.model.coupling import Diagnostics, WarmStart
+from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.evaluation import film_scale
 from lubecontact.model.fluid_film import fluid_faces, fluid_film, yield_stress_law
 from lubecontact.model.model import Model, SolveError, State
@@ -178,7 +178,10 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, gap_slope,
                                            coefficient_slope)
         if model.squeeze is not None:  # the cell's squeeze outflow dA c0 h_T (docs/physics.md section 14)
-            j_wh = j_wh + squeeze_film_jacobian(mesh, unknown, model.squeeze.coefficient * gap_slope)
+            squeeze_slope = squeeze_film_jacobian(mesh, unknown, model.squeeze.coefficient * gap_slope)
+            j_wh = j_wh + squeeze_slope
+            if grease is not None:
+                grease_flow = dataclasses.replace(grease_flow, outflow_film=grease_flow.outflow_film + squeeze_slope)
         slopes = (d_a, d_b)
         parts = grease_flow if grease is not None else LinearOutflow(system.matrix, scale, w, j_wh, j_sh)
         # cavitated: the outflow, not the pressure, is the positive partner (a sealed node with
@@ -593,3 +596,26 @@ def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
                 f"the nested solver stopped after {diagnostics.iterations} iterations ({why}); one Newton {how} "
                 f"converged in {newton_diagnostics.iterations} (solver.method newton, docs/physics.md section 20)")
     return state, diagnostics, ""
+
+
+# A grease's Poiseuille coefficient depends on the pressure gradient, which the nested
+# solver's linear Reynolds solve cannot take: its scenes go to the one Newton, which can.
+GREASE_BY_NEWTON = ("lubricant.rheology {}: solved by one Newton (solver.method newton; the nested solver takes a "
+                    "pressure-independent coefficient, docs/physics.md section 21)")
+
+
+def needs_newton(model: Model) -> bool:
+    """Whether ``model`` is solved by the one Newton alone: solver.method newton, or a grease."""
+    scene = model.scene
+    return scene.solver.method == "newton" or scene.lubricant.rheology != "newtonian"
+
+
+def steady_solve(model: Model, initial: WarmStart | None = None) -> tuple[State, Diagnostics, list[str]]:
+    """(state, diagnostics, notes) of a steady point by the scene's solver: the one Newton
+    (needs_newton), else the nested solve finished by one Newton where it stops
+    (finished_by_newton); the notes say which, where it is not the scene's default."""
+    if needs_newton(model):
+        notes = [] if model.scene.solver.method == "newton" else [GREASE_BY_NEWTON.format(model.scene.lubricant.rheology)]
+        return *monolithic_solve(model, initial), notes
+    state, diag, finished = finished_by_newton(model, *coupled_solve(model, initial))
+    return state, diag, [finished] if finished else []

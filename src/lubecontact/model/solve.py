@@ -18,19 +18,13 @@ from __future__ import annotations
 import time
 
 from lubecontact.io.case_result import CaseResult
-from lubecontact.model.coupling import WarmStart, coupled_solve
+from lubecontact.model.coupling import WarmStart
 from lubecontact.model.model import Model
-from lubecontact.model.monolithic_newton import finished_by_newton, monolithic_solve
+from lubecontact.model.monolithic_newton import steady_solve
 from lubecontact.model.outputs import point_outputs
 from lubecontact.model.prepare import prepare
 from lubecontact.model.validity import assess, flag_bits
 from lubecontact.numerics.blas_threads import one_blas_thread
-
-# A grease's Poiseuille coefficient depends on the pressure gradient, which the nested
-# solver's linear Reynolds solve cannot take: its scenes go to the one Newton, which can.
-GREASE_BY_NEWTON = ("lubricant.rheology {}: solved by one Newton (solver.method newton; the nested solver takes a "
-                    "pressure-independent coefficient, docs/physics.md section 21)")
-
 
 def solve(scene, fields: bool = False, initial: WarmStart | None = None, return_state: bool = False):
     """Solve one operating point; returns the case ``xarray.Dataset`` (docs/DESIGN.md outputs),
@@ -52,14 +46,8 @@ def solve_case(scene, fields: bool = False, initial: WarmStart | None = None):
     scene, notes = prepared.scene, list(prepared.notes)
     with one_blas_thread():
         model = Model.assemble(scene, contact=prepared.contact)
-        if scene.solver.method == "newton" or scene.lubricant.rheology != "newtonian":
-            if scene.solver.method != "newton":
-                notes.append(GREASE_BY_NEWTON.format(scene.lubricant.rheology))
-            state, diag = monolithic_solve(model, initial)
-        else:  # nested, finished by one Newton where it stalls
-            state, diag, finished = finished_by_newton(model, *coupled_solve(model, initial))
-            if finished:
-                notes.append(finished)
+        state, diag, solver_notes = steady_solve(model, initial)
+        notes.extend(solver_notes)
     if diag.failure:
         notes.append("NOT CONVERGED: " + diag.failure)
     outputs, output_notes = point_outputs(model, state)

@@ -603,7 +603,8 @@ class Motion(_Section):
         "normal base excitation of the connector: none | sine | half_sine_shock (needs motion.mass > 0)",
     )
     vibration_acceleration: float = _field(
-        0.0, _nonnegative("m/s^2"), "peak acceleration of the base excitation, normal to the contact (toward the block)"
+        0.0, _Real("m/s^2"),
+        "peak acceleration of the base excitation, normal to the contact: > 0 toward the block, < 0 away (lifts a shock)",
     )
     vibration_frequency: float = _field(100.0, _positive("Hz"), "sine: frequency of the base excitation")
     shock_duration: float = _field(1.0e-3, _positive("s"), "half_sine_shock: duration of the half sine")

@@ -41,7 +41,7 @@ class BaseExcitation:
     """a_b(t) of a scene's motion.vibration (m/s^2, toward the block positive)."""
 
     kind: str  # none | sine | half_sine_shock
-    acceleration: float  # peak, m/s^2
+    acceleration: float  # peak, m/s^2 (toward the block positive)
     frequency: float  # Hz (sine)
     duration: float  # s (half_sine_shock)
 

@@ -45,7 +45,7 @@ import numpy as np
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.fluid_film import fluid_film
 from lubecontact.model.model import Model, SolveError
-from lubecontact.model.monolithic_newton import dense_step_serves, monolithic_solve
+from lubecontact.model.monolithic_newton import dense_step_serves, monolithic_solve, needs_newton, steady_solve
 from lubecontact.numerics.mesh import build_mesh
 from lubecontact.unsteady.dynamics import BaseExcitation, Dynamics
 from lubecontact.unsteady.motion import MAX_STEPS
@@ -135,13 +135,13 @@ def step_solve(model: Model, initial: WarmStart):
     the Newton's, else both failures named. Measured on Table 1 stops: the Newton alone
     fails on the 201-node line where the nested solve converges, and the nested alone on
     the 20 N stop and at motion.tolerance 1e-5 (tests/test_hard_cases.py). A contact with
-    mass and spring (Model.load), and solver.method newton, have the Newton only. On a 2-D
+    mass and spring (Model.load), a grease and solver.method newton have the Newton only. On a 2-D
     mesh, where the Newton's step is an unpreconditioned GMRES solve (slow), the nested
     solve alone."""
     if not dense_step_serves(model):
         return coupled_solve(model, initial)
     state, diag = monolithic_solve(model, initial, continuation=False)
-    if model.load is not None or model.scene.solver.method == "newton":  # the nested solve has no F(z)
+    if model.load is not None or needs_newton(model):  # the nested solve has no F(z), nor a grease
         return state, diag
     start = initial
     if diag.converged:
@@ -187,7 +187,7 @@ class TimeIntegrator:
     def start(self) -> Level:
         """The steady state at t = 0 (the motion's initial speed)."""
         model = self.steady_model
-        state, diag = coupled_solve(model)
+        state, diag, _ = steady_solve(model)
         self.coupled_solves += 1
         transient = dataclasses.replace(model, hydrodynamic=bool(self.scene.effects.hydrodynamics))
         return Level(0.0, self.history.initial_speed(), state, self._gap(transient, state.film), model, diag)

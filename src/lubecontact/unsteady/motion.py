@@ -110,12 +110,10 @@ def motion_problems(scene) -> list[str]:
             "effects.cavitation = 'jfo': the transient's squeeze term is built on the Reynolds condition so far "
             "(its film-content history is not yet carried); allowed: 'reynolds' or 'none' with a motion"
         )
-    # A grease needs the one Newton (docs/physics.md section 21); its step's Jacobian does not
-    # carry the squeeze term yet (the Newtonian one does: section 20)
-    if scene.lubricant.rheology != "newtonian" and scene.motion.kind != "steady":
+    if scene.lubricant.rheology != "newtonian" and scene.motion.kind != "steady" and scene.mesh.ny > 1:
         problems.append(
-            f"lubricant.rheology = {scene.lubricant.rheology!r}: a grease is solved by the one Newton, whose time step "
-            "does not yet linearise a grease's squeeze term; allowed: 'newtonian' with a motion"
+            f"lubricant.rheology = {scene.lubricant.rheology!r} with a motion on a 2-D mesh: a grease is solved by the "
+            "one Newton, which steps line contacts in time so far; allowed: mesh.ny = 1, or a 'newtonian' lubricant"
         )
     m = scene.motion
     if (m.mass > 0.0 or m.spring_stiffness > 0.0) and scene.mesh.ny > 1:
@@ -127,7 +125,7 @@ def motion_problems(scene) -> list[str]:
     if m.vibration != "none" and (m.mass == 0.0 or m.vibration_acceleration == 0.0):
         problems.append(
             f"motion.vibration = {m.vibration!r} acts on the contact through its mass: it needs motion.mass > 0 "
-            f"(is {m.mass:g} kg) and motion.vibration_acceleration > 0 (is {m.vibration_acceleration:g} m/s^2)"
+            f"(is {m.mass:g} kg) and motion.vibration_acceleration not 0 (is {m.vibration_acceleration:g} m/s^2)"
         )
     if scene.solver.method == "newton" and scene.motion.kind != "steady" and scene.mesh.ny > 1:
         problems.append(

@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import xarray as xr
 
-from lubecontact.model.coupling import coupled_solve
+from lubecontact.model.monolithic_newton import steady_solve
 from lubecontact.model.model import Model
 from lubecontact.model.prepare import prepare
 from lubecontact.numerics.blas_threads import one_blas_thread
@@ -35,7 +35,7 @@ def _rest_resistance(integrator) -> float:
     if integrator.contact is None:
         return math.inf
     model = Model.assemble(scene_at(integrator.scene, 0.0), integrator.steady_model.mesh, integrator.contact)
-    state, _ = coupled_solve(model)
+    state, _, _ = steady_solve(model)
     integrator.coupled_solves += 1
     return instant(model, state)["contact_resistance"]
 
