@@ -10,9 +10,11 @@ import numpy as np
 import xarray as xr
 
 from lubecontact.model.monolithic_newton import steady_solve
+from lubecontact.model.fluid_film import yield_stress_law
 from lubecontact.model.model import Model
 from lubecontact.model.prepare import prepare
 from lubecontact.numerics.blas_threads import one_blas_thread
+from lubecontact.physics.yield_stress_flow import creep_squeeze_rate
 from lubecontact.scene import SceneError
 from lubecontact.unsteady.events import level_events
 from lubecontact.unsteady.integrator import TimeIntegrator, scene_at
@@ -68,6 +70,26 @@ def integration_error(value: float, tighter: float | None) -> float:
     if tighter is None or not (math.isfinite(value) and math.isfinite(tighter)):
         return math.nan
     return abs(value - tighter) / (1.0 - ERROR_BAR_TIGHTENING ** -ERROR_ORDER_IN_TOLERANCE)
+
+
+def creep_note(levels) -> str:
+    """What the bi-viscous regularisation of a grease may cost over the run (docs/physics.md
+    section 21), "" for a Newtonian lubricant: a film held at its yield limit thins through
+    the thickest film on the domain (its ends) by creep_squeeze_rate, an upper bound, here
+    compared with the smallest film of the last instant."""
+    last = levels[-1]
+    law = yield_stress_law(last.model)
+    if law is None:
+        return ""
+    mesh = last.model.mesh
+    thickest, thinnest = float(np.max(last.state.film)), float(np.min(last.state.film))
+    rate = creep_squeeze_rate(thickest, 0.5 * float(mesh.x[-1] - mesh.x[0]), law)
+    lost = rate * last.time
+    return (f"grease creep (bi-viscous regularisation, lubricant.creep_viscosity = {law.creep_viscosity:g} Pa s): a film "
+            f"held at its yield limit thins by up to {rate:.2g} m/s, through the thickest film on the domain "
+            f"({thickest:.3g} m), so by up to {lost:.2g} m over the {last.time:g} s simulated, {lost / thinnest:.2g} of "
+            f"the smallest film ({thinnest:.3g} m){'' if lost < 0.01 * thinnest else ': not negligible; raise lubricant.creep_viscosity'}"
+            " (docs/physics.md section 21)")
 
 
 def _to_stderr(line: str) -> None:
@@ -140,6 +162,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         fraction = opened.open_time_until(oscillating) / oscillating
         peaks = cycle_peaks(series_t, resistance, history.period, scene.motion.cycles)
     scalars["open_fraction"] = fraction
+    creep = creep_note(levels)
+    if creep:
+        notes.append(creep)
     notes.append(f"open threshold {threshold:g} ohm (interface.open_resistance, default {threshold:g})")
     notes.append(f"cavitation: {scene.effects.cavitation} (Swift-Stieber is not mass-conserving where a film re-forms)")
     series = series_dataset(scene, series_t, rows, scalars, "; ".join(notes), peaks, opened)
