@@ -98,3 +98,41 @@ def test_dynamics_keys_keep_old_hashes_and_bad_ones_are_refused():
         lc.transient(lc.load_scene(TABLE1, {"motion.kind": "stop", "motion.mass": 1e-4}), progress=False)
     with pytest.raises(lc.SceneError, match="needs motion.mass > 0"):
         lc.transient(lc.load_scene(TABLE1, {"mesh.ny": 1, "motion.vibration": "sine"}), progress=False)
+
+
+def test_random_vibration_has_its_rms_and_its_band():
+    # EIA-364-28's random profiles give a flat acceleration density over a band and its RMS
+    base = BaseExcitation("random", 74.0, 50.0, 0.2, 2000.0, seed=3)  # 7.56 g rms, 50-2000 Hz, 0.2 s
+    t = np.arange(0.0, 0.2, 1e-5)  # 20 000 samples: 100 kHz, far above the band
+    signal = np.array([base.acceleration_at(x) for x in t])
+    assert np.sqrt(np.mean(signal**2)) == pytest.approx(74.0, rel=1e-3)  # Parseval over whole periods
+    power = np.abs(np.fft.rfft(signal)) ** 2
+    frequency = np.fft.rfftfreq(t.size, 1e-5)
+    inside = (frequency >= 50.0) & (frequency <= 2000.0)
+    assert power[inside].sum() > (1 - 1e-9) * power.sum()  # nothing outside the band
+    band = power[inside]
+    assert np.allclose(band, band.mean(), rtol=1e-6)  # flat: every line of the band carries the same power
+    again = BaseExcitation("random", 74.0, 50.0, 0.2, 2000.0, seed=3)
+    other = BaseExcitation("random", 74.0, 50.0, 0.2, 2000.0, seed=4)
+    assert again.acceleration_at(0.0123) == base.acceleration_at(0.0123) != other.acceleration_at(0.0123)
+
+
+def test_sine_sweep_frequency_rises_logarithmically():
+    sweep = BaseExcitation("sine_sweep", 10.0, 100.0, 1.0, 1000.0)  # 100 Hz to 1 kHz over 1 s
+    for when, expected in ((0.05, 100.0 * 10**0.05), (0.5, 100.0 * 10**0.5), (0.95, 100.0 * 10**0.95)):
+        t = np.linspace(when - 0.01, when + 0.01, 20001)
+        a = np.array([sweep.acceleration_at(x) for x in t])
+        up = t[1:][(a[:-1] < 0.0) & (a[1:] >= 0.0)]  # upward zero crossings
+        assert 1.0 / np.mean(np.diff(up)) == pytest.approx(expected, rel=0.01)
+    assert sweep.max_step(0.3) == pytest.approx(1.0 / (1000.0 * 40))
+
+
+def test_a_vibration_needing_too_many_steps_is_refused():
+    with pytest.raises(lc.SceneError, match="needs at least"):
+        lc.transient(lc.load_scene(TABLE1, {**DRY_LINE, "motion.mass": 1e-3, "motion.vibration": "sine",
+                                            "motion.vibration_acceleration": 10.0, "motion.vibration_frequency": 1e4,
+                                            "motion.duration": 100.0}), progress=False)
+    with pytest.raises(lc.SceneError, match="an end above the start"):
+        lc.transient(lc.load_scene(TABLE1, {**DRY_LINE, "motion.mass": 1e-3, "motion.vibration": "random",
+                                            "motion.vibration_acceleration": 10.0, "motion.vibration_frequency": 500.0,
+                                            "motion.vibration_frequency_end": 100.0}), progress=False)

@@ -599,19 +599,26 @@ class Motion(_Section):
         0.0, _nonnegative("N/m"), "stiffness of the connector's spring; operating.force is its preload at the start"
     )
     vibration: str = _field(
-        "none", _Choice(("none", "sine", "half_sine_shock")),
-        "normal base excitation of the connector: none | sine | half_sine_shock (needs motion.mass > 0)",
+        "none", _Choice(("none", "sine", "sine_sweep", "random", "half_sine_shock")),
+        "normal base excitation of the connector: none | sine | sine_sweep | random | half_sine_shock (needs motion.mass > 0)",
     )
     vibration_acceleration: float = _field(
         0.0, _Real("m/s^2"),
-        "peak acceleration of the base excitation, normal to the contact: > 0 toward the block, < 0 away (lifts a shock)",
+        "peak acceleration of the base excitation (random: its RMS), normal to the contact: > 0 toward the block, "
+        "< 0 away (lifts a shock)",
     )
-    vibration_frequency: float = _field(100.0, _positive("Hz"), "sine: frequency of the base excitation")
+    vibration_frequency: float = _field(
+        100.0, _positive("Hz"), "sine: frequency of the base excitation; sine_sweep, random: the lowest"
+    )
+    vibration_frequency_end: float = _field(
+        1000.0, _positive("Hz"), "sine_sweep: frequency at the end of motion.duration; random: the highest of its band"
+    )
+    vibration_seed: int = _field(0, _Integer(0), "random: seed of the phases (the same seed, the same signal)")
     shock_duration: float = _field(1.0e-3, _positive("s"), "half_sine_shock: duration of the half sine")
 
     # keys added after scenes were written: left out at their defaults (to_dict), so no hash changes
     DYNAMICS_KEYS = ("mass", "spring_stiffness", "vibration", "vibration_acceleration", "vibration_frequency",
-                     "shock_duration")
+                     "vibration_frequency_end", "vibration_seed", "shock_duration")
 
     def to_dict(self):
         """None for the default motion; ``error_bar`` and the dynamics keys left out at their

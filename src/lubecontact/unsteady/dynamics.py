@@ -18,15 +18,26 @@ twice, to z and to v = z' (the first-order system (z, v)): v = c0 z + sum_j c_j 
 c0 v + sum_j c_j v_{n+1-j}, so dF/dz = k_s + m c0^2 at the new level. With m = 0 and k_s = 0
 F is F0: the massless model.
 
-Base excitations, as connector vibration and shock tests give them (EIA-364-28 sine
-vibration, EIA-364-27 half-sine mechanical shock): ``sine`` a_b = A sin(2 pi f t) and
-``half_sine_shock`` a_b = A sin(pi t / T) for 0 <= t <= T, zero after.
+Base excitations, as connector vibration and shock tests give them (EIA-364-28 sine and
+random vibration, EIA-364-27 half-sine mechanical shock):
+
+- ``sine``: a_b = A sin(2 pi f t);
+- ``sine_sweep``: a_b = A sin(phi(t)), the frequency rising logarithmically from f1 to f2
+  over the run's duration D, f(t) = f1 (f2/f1)^(t/D), phi(t) = 2 pi f1 D (k^(t/D) - 1)/ln k
+  with k = f2/f1 (phi' = 2 pi f(t));
+- ``random``: a flat acceleration spectral density S = A_rms^2/(f2 - f1) over [f1, f2] (a
+  random vibration profile), synthesised as the sum of sines at every multiple of 1/D in the
+  band (N of them, about (f2 - f1) D), each of amplitude A_rms sqrt(2/N) and a random phase
+  from the seed: over the run its mean square is exactly A_rms^2 (Parseval: each sine at a
+  whole number of periods has mean square amplitude^2/2);
+- ``half_sine_shock``: a_b = A sin(pi t / T) for 0 <= t <= T, zero after.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -38,24 +49,50 @@ STEPS_PER_SHOCK = 20
 
 @dataclass(frozen=True)
 class BaseExcitation:
-    """a_b(t) of a scene's motion.vibration (m/s^2, toward the block positive)."""
+    """a_b(t) of a scene's motion.vibration (m/s^2, toward the block positive; module docstring)."""
 
-    kind: str  # none | sine | half_sine_shock
-    acceleration: float  # peak, m/s^2 (toward the block positive)
-    frequency: float  # Hz (sine)
-    duration: float  # s (half_sine_shock)
+    kind: str  # none | sine | sine_sweep | random | half_sine_shock
+    acceleration: float  # peak (random: RMS), m/s^2, toward the block positive
+    frequency: float  # Hz: sine; the lowest of a sweep or a random band
+    duration: float  # s: half_sine_shock's T; sine_sweep's and random's D, the run's duration
+    frequency_end: float = math.inf  # Hz: the highest of a sweep or a random band
+    seed: int = 0  # random: the phases' seed
 
     @classmethod
     def from_scene(cls, scene) -> "BaseExcitation":
         m = scene.motion
-        return cls(m.vibration, m.vibration_acceleration, m.vibration_frequency, m.shock_duration)
+        duration = m.shock_duration if m.vibration == "half_sine_shock" else m.stop_time + m.duration
+        return cls(m.vibration, m.vibration_acceleration, m.vibration_frequency, duration, m.vibration_frequency_end,
+                   m.vibration_seed)
 
     def acceleration_at(self, t: float) -> float:
         if self.kind == "sine":
             return self.acceleration * math.sin(2.0 * math.pi * self.frequency * t)
+        if self.kind == "sine_sweep":
+            ratio = self.frequency_end / self.frequency
+            phase = 2.0 * math.pi * self.frequency * self.duration * (ratio ** (t / self.duration) - 1.0) / math.log(ratio)
+            return self.acceleration * math.sin(phase)
+        if self.kind == "random":
+            frequencies, amplitudes, phases = self.random_components
+            return float(np.sum(amplitudes * np.sin(2.0 * math.pi * frequencies * t + phases)))
         if self.kind == "half_sine_shock" and 0.0 <= t <= self.duration:
             return self.acceleration * math.sin(math.pi * t / self.duration)
         return 0.0
+
+    @cached_property
+    def random_components(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(frequencies Hz, amplitudes m/s^2, phases) of the random excitation's sines: the N
+        multiples of 1/D in [f1, f2], each of amplitude A_rms sqrt(2/N), so that their mean
+        square over D is A_rms^2 and the density A_rms^2 D/N ~ A_rms^2/(f2 - f1)."""
+        spacing = 1.0 / self.duration
+        frequencies = spacing * np.arange(math.ceil(self.frequency / spacing), math.floor(self.frequency_end / spacing) + 1)
+        phases = np.random.default_rng(self.seed).uniform(0.0, 2.0 * math.pi, frequencies.size)
+        return frequencies, np.full(frequencies.size, abs(self.acceleration) * math.sqrt(2.0 / frequencies.size)), phases
+
+    def highest_frequency(self) -> float:
+        """Hz: the fastest the excitation changes (0 for none, 1/(2T) for a shock)."""
+        return {"none": 0.0, "sine": self.frequency, "half_sine_shock": 0.5 / self.duration}.get(self.kind,
+                                                                                               self.frequency_end)
 
     def breakpoints(self) -> list[float]:
         """Instants where a_b(t) is not smooth (steps land on them)."""
@@ -63,11 +100,11 @@ class BaseExcitation:
 
     def max_step(self, t: float) -> float:
         """Largest time step at t that resolves the excitation (s)."""
-        if self.kind == "sine":
-            return 1.0 / (self.frequency * STEPS_PER_VIBRATION_PERIOD)
-        if self.kind == "half_sine_shock" and t < self.duration:
-            return self.duration / STEPS_PER_SHOCK
-        return math.inf
+        if self.kind == "half_sine_shock":
+            return self.duration / STEPS_PER_SHOCK if t < self.duration else math.inf
+        if self.kind == "none":
+            return math.inf
+        return 1.0 / (self.highest_frequency() * STEPS_PER_VIBRATION_PERIOD)
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lubecontact.unsteady.dynamics import STEPS_PER_VIBRATION_PERIOD, BaseExcitation
+
 # Steps per oscillation period at most: the integrator must resolve each cycle.
 STEPS_PER_PERIOD = 40
 MAX_STEPS = 20000  # time steps of one run; a motion that needs more is refused before it starts
@@ -122,6 +124,19 @@ def motion_problems(scene) -> list[str]:
             f"{scene.mesh.ny} mesh: a contact with mass or spring is stepped by the one Newton, whose step serves line "
             "contacts so far; allowed: mesh.ny = 1, or mass and spring_stiffness 0"
         )
+    if m.vibration in ("sine_sweep", "random") and not m.vibration_frequency_end > m.vibration_frequency:
+        problems.append(
+            f"motion.vibration = {m.vibration!r} runs from motion.vibration_frequency = {m.vibration_frequency:g} Hz to "
+            f"motion.vibration_frequency_end = {m.vibration_frequency_end:g} Hz; allowed: an end above the start"
+        )
+    elif m.vibration != "none":
+        needed = (m.stop_time + m.duration) * BaseExcitation.from_scene(scene).highest_frequency() * STEPS_PER_VIBRATION_PERIOD
+        if needed > MAX_STEPS:
+            problems.append(
+                f"motion.vibration = {m.vibration!r} up to {BaseExcitation.from_scene(scene).highest_frequency():g} Hz "
+                f"for motion.duration = {m.duration:g} s needs at least {needed:.3g} time steps "
+                f"({STEPS_PER_VIBRATION_PERIOD} a period); allowed: at most {MAX_STEPS} steps"
+            )
     if m.vibration != "none" and (m.mass == 0.0 or m.vibration_acceleration == 0.0):
         problems.append(
             f"motion.vibration = {m.vibration!r} acts on the contact through its mass: it needs motion.mass > 0 "
