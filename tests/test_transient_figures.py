@@ -1,9 +1,12 @@
 """The transient figures (lubecontact.plotting.transient) on synthetic series: a title that
 fits the figure, series whose markers stay visible where they coincide (issue 29 item 12);
-the shock figure (issue 28 item 6) on synthetic series and on one real lift-off."""
+the shock figure (issue 28 item 6) on synthetic series and on one real lift-off, and the
+shock study's cases (config/transient.yaml) planned by their scene hashes."""
 
 import numpy as np
+import pytest
 import xarray as xr
+import yaml
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.text import Text
 from test_transient import CONFIG_KEY
@@ -11,6 +14,7 @@ from test_transient import CONFIG_KEY
 import lubecontact as lc
 from lubecontact.plotting import transient as plots
 from lubecontact.plotting.figures import unit_label
+from lubecontact.studies import transient_cases as study
 from lubecontact.studies.transient_cases import key_words
 
 
@@ -169,3 +173,20 @@ def test_a_real_lift_off_is_drawn_with_its_events():
     marked, = [line for line in middle.get_lines() if line.get_marker() == "^" and len(line.get_xdata())]
     assert len(marked.get_xdata()) == np.isinf(ds["contact_resistance"].values).sum()
 
+
+@pytest.mark.parametrize("overrides", [None, "config/test.yaml"])
+def test_the_shock_study_plans_one_case_per_shock_by_its_scene(overrides):
+    """Each shock is the scene of the study's set, the figure's set and its peak, named by its
+    hash; at least one peak stays below the spring's preload over the mass (quasi-static
+    lift-off) and one exceeds it."""
+    extra = yaml.safe_load(open(overrides))["transient"] if overrides else None
+    spec = study.study_spec("config/transient.yaml", extra)
+    cases = study.figure_cases(spec)["shock"]
+    figure = spec["figures"]["shock"]
+    scenes = [lc.load_scene(spec["base"], {**spec["set"], **figure["set"], **curve["set"]}) for curve in figure["curves"]]
+    assert [c["id"] for c in cases] == [s.hash for s in scenes] and len(set(c["id"] for c in cases)) == len(cases)
+    assert [c["label"] for c in cases] == [curve["label"] for curve in figure["curves"]]
+    pull = [-s.motion.mass * s.motion.vibration_acceleration / s.operating.force for s in scenes]
+    assert min(pull) < 1.0 < max(pull)
+    assert all(s.mesh.ny == 1 and s.motion.vibration == "half_sine_shock" and s.motion.shock_duration == 0.011
+               for s in scenes)
