@@ -4,6 +4,7 @@ the limit of shrinking ramps, the integrator's order, the discrete volume balanc
 trends argued from the equations. Line mode and coarse meshes keep them cheap."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -22,6 +23,10 @@ ROUGH_STOP = {"operating.speed": 1.0, "motion.kind": "stop", "motion.ramp": 1e-3
 SMOOTH_STOP = {"operating.speed": 1.0, "motion.kind": "stop", "motion.ramp": 1e-4, "motion.duration": 3e-3,
                "effects.asperity_contact": False, "effects.elastic_deformation": False,
                "mesh.ny": 1, "mesh.nx": 2001, "mesh.x_min": -1e-3, "mesh.x_max": 1e-3}
+
+
+# a dotted config key (lubricant.viscosity) in a figure's text: figures speak in words and units
+CONFIG_KEY = re.compile(r"\b[a-z_]+\.[a-z_]+\b")
 
 
 def scene(base, **overrides):
@@ -309,13 +314,11 @@ def test_a_steady_start_that_fails_says_why():
 
 def test_transient_figure_labels_name_no_config_key():
     """Issue 29 item 12: legends and axes of the transient figures are words and units."""
-    import re
-
     from lubecontact.studies import transient_cases as study
 
     cases = study.figure_cases(study.study_spec("config/transient.yaml", None))
     labels = [case["label"] for group in cases.values() for case in group]
-    assert labels and not [label for label in labels if re.search(r"\b[a-z_]+\.[a-z_]+\b", label)]
+    assert labels and not [label for label in labels if CONFIG_KEY.search(label)]
     assert study.key_words("lubricant.viscosity") == "dynamic viscosity mu"
     assert study.key_words("operating.force") == "normal force on the cylinder F"
 

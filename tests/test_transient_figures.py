@@ -1,14 +1,20 @@
 """The transient figures (lubecontact.plotting.transient) on synthetic series: a title that
-fits the figure, series whose markers stay visible where they coincide (issue 29 item 12)."""
+fits the figure, series whose markers stay visible where they coincide (issue 29 item 12);
+the shock figure (issue 28 item 6) on synthetic series and on one real lift-off, and the
+shock study's cases (config/transient.yaml) planned by their scene hashes."""
 
 import numpy as np
+import pytest
 import xarray as xr
+import yaml
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.text import Text
+from test_transient import CONFIG_KEY
 
 import lubecontact as lc
 from lubecontact.plotting import transient as plots
 from lubecontact.plotting.figures import unit_label
+from lubecontact.studies import transient_cases as study
 from lubecontact.studies.transient_cases import key_words
 
 
@@ -24,13 +30,18 @@ def series(fraction=0.25):
     )
 
 
-def test_the_vibration_title_fits_the_figure():
-    fig = plots.vibration_figure(series(), "Reciprocating sliding of the Table 1 contact (line contact)")
+def assert_the_title_fits(fig):
+    """The figure's suptitle, drawn, lies within the figure's width."""
     FigureCanvasAgg(fig).draw()
     title, = [text for text in fig.findobj(Text) if text.get_text() == fig.get_suptitle()]
     box = title.get_window_extent()
     width = fig.get_window_extent()
     assert box.x0 >= width.x0 and box.x1 <= width.x1
+
+
+def test_the_vibration_title_fits_the_figure():
+    fig = plots.vibration_figure(series(), "Reciprocating sliding of the Table 1 contact (line contact)")
+    assert_the_title_fits(fig)
     assert "1 mm at 20 Hz" in fig.get_suptitle() and "open 25 %" in fig.get_suptitle()
 
 
@@ -66,3 +77,116 @@ def test_a_design_chart_title_of_any_length_stays_inside_the_figure():
     assert text.get_text().split("\n\u25b2")[0].replace("\n", " ") == title
     box, width = text.get_window_extent(), fig.get_window_extent()
     assert box.x0 >= width.x0 and box.x1 <= width.x1
+
+
+G = 9.80665  # standard gravity, m/s^2
+# the shock figure's contact (config/transient.yaml figures.shock), without its peak
+SHOCK = {"mesh.ny": 1, "operating.speed": 0.0, "operating.force": 0.5, "motion.kind": "steady",
+         "motion.duration": 0.05, "motion.mass": 1e-3, "motion.spring_stiffness": 2000.0,
+         "motion.vibration": "half_sine_shock", "motion.shock_duration": 0.011}
+
+
+def struck(peak_g, resistance, events=()):
+    """A synthetic shock series: ``resistance`` on 0..50 ms, ``events`` (start, duration) in s."""
+    scene = lc.load_scene("config/scenes/table1.yaml", {**SHOCK, "motion.vibration_acceleration": -peak_g * G})
+    t = np.linspace(0.0, 0.05, len(resistance))
+    starts, durations = zip(*events) if events else ((), ())
+    return xr.Dataset(
+        {"contact_resistance": ("time", np.asarray(resistance, dtype=float)),
+         "min_film_thickness": ("time", np.full(len(resistance), 0.7e-6)),
+         "open_resistance": ((), 10.0), "event_count": ((), len(events)), "event_open_time": ((), sum(durations)),
+         "event_start": ("event", np.array(starts, dtype=float)), "event_duration": ("event", np.array(durations, dtype=float)),
+         "event_open_at_end": ("event", np.zeros(len(events), dtype=bool))},
+        coords={"time": t}, attrs={"scene": scene.canonical_yaml()},
+    )
+
+
+def shock_cases():
+    """A 30 g shock that stays closed, a 100 g one that lifts (R infinite on 20..30 ms, one
+    event 18..32 ms) and comes back."""
+    closed = struck(30, np.full(51, 1e-4))
+    lifted = np.full(51, 1e-4)
+    lifted[18:33] = 1e3
+    lifted[20:31] = np.inf
+    return [("30 g peak", closed), ("100 g peak", struck(100, lifted, events=[(0.018, 0.014)]))]
+
+
+def shaded(ax):
+    """The shaded spans of an axes, each a box in data coordinates (x: ms)."""
+    return [p.get_path().get_extents(p.get_patch_transform() + p.get_data_transform() - ax.transData)
+            for p in ax.patches]
+
+
+def test_the_shock_figure_shades_each_event_where_the_data_put_it():
+    fig = plots.shock_figure(shock_cases(), "A struck contact")
+    base, middle, bottom = fig.axes
+    spans = shaded(middle)
+    assert len(spans) == 1  # the closed contact has none
+    np.testing.assert_allclose([spans[0].x0, spans[0].x1], [18.0, 32.0])  # ms
+    legend = [text.get_text() for text in middle.get_legend().get_texts()]
+    assert "30 g peak: no event" in legend and "100 g peak: 1 event(s), open 14 ms in all" in legend
+    threshold, = [line for line in middle.get_lines() if line.get_label().startswith("open threshold")]
+    assert threshold.get_linestyle() == "--" and list(threshold.get_ydata()) == [10.0, 10.0]
+    assert threshold.get_label() == "open threshold 10 \u03a9"
+    # top: the base acceleration away from the block in g, each shock's peak at 5.5 ms
+    peaks = [max(line.get_ydata()) for line in base.get_lines()]
+    np.testing.assert_allclose(peaks, [30.0, 100.0], rtol=1e-4)
+
+
+def test_the_shock_figure_marks_an_infinite_resistance_on_the_top_edge():
+    fig = plots.shock_figure(shock_cases(), "A struck contact")
+    middle = fig.axes[1]
+    top = middle.get_ylim()[1]
+    markers = [line for line in middle.get_lines() if line.get_marker() == "^" and len(line.get_xdata())]
+    assert len(markers) == 1  # only the lifted contact
+    np.testing.assert_allclose(markers[0].get_xdata(), np.linspace(0.0, 50.0, 51)[20:31])
+    assert set(markers[0].get_ydata()) == {top}
+    # its line runs along the edge there, not dropped
+    lifted_line = next(line for line in middle.get_lines() if line.get_label().startswith("100 g peak"))
+    assert np.isfinite(lifted_line.get_ydata()).all() and lifted_line.get_ydata()[25] == top
+    assert any("lift-off" in text.get_text() for text in middle.get_legend().get_texts())
+
+
+def test_the_shock_figure_speaks_in_words_and_units_within_its_width():
+    fig = plots.shock_figure(shock_cases(), "A connector contact struck by half-sine shocks away from the block")
+    assert_the_title_fits(fig)
+    texts = [text.get_text() for text in fig.findobj(Text) if text.get_text()]
+    assert not [text for text in texts if CONFIG_KEY.search(text)]
+    title = fig.get_suptitle()
+    for words in ("spring preload 0.5 N", "moving mass 0.001 kg", "spring stiffness 2000 N/m",
+                  "lubricant viscosity 0.1 Pa s"):
+        assert words in title.replace("\n", " ")
+    labels = [ax.get_ylabel() for ax in fig.axes] + [fig.axes[-1].get_xlabel()]
+    assert all(label.endswith(")") and "(" in label for label in labels)  # each with its unit
+
+
+def test_a_real_lift_off_is_drawn_with_its_events():
+    """The test configuration's 100 g shock (config/test.yaml): a rigid 31-node line lifts."""
+    scene = lc.load_scene("config/scenes/table1.yaml", {**SHOCK, "mesh.nx": 31, "effects.elastic_deformation": False,
+                                                        "motion.tolerance": 1e-2, "motion.vibration_acceleration": -100 * G})
+    ds = lc.transient(scene, progress=False)
+    assert ds["event_count"].item() >= 1 and np.isinf(ds["contact_resistance"].values).any()
+    middle = plots.shock_figure([("100 g peak", ds)], "A struck contact").axes[1]
+    spans = shaded(middle)
+    ends = ds["event_start"].values + ds["event_duration"].values
+    np.testing.assert_allclose([(b.x0, b.x1) for b in spans], np.c_[ds["event_start"].values, ends] * 1e3)
+    marked, = [line for line in middle.get_lines() if line.get_marker() == "^" and len(line.get_xdata())]
+    assert len(marked.get_xdata()) == np.isinf(ds["contact_resistance"].values).sum()
+
+
+@pytest.mark.parametrize("overrides", [None, "config/test.yaml"])
+def test_the_shock_study_plans_one_case_per_shock_by_its_scene(overrides):
+    """Each shock is the scene of the study's set, the figure's set and its peak, named by its
+    hash; at least one peak stays below the spring's preload over the mass (quasi-static
+    lift-off) and one exceeds it."""
+    extra = yaml.safe_load(open(overrides))["transient"] if overrides else None
+    spec = study.study_spec("config/transient.yaml", extra)
+    cases = study.figure_cases(spec)["shock"]
+    figure = spec["figures"]["shock"]
+    scenes = [lc.load_scene(spec["base"], {**spec["set"], **figure["set"], **curve["set"]}) for curve in figure["curves"]]
+    assert [c["id"] for c in cases] == [s.hash for s in scenes] and len(set(c["id"] for c in cases)) == len(cases)
+    assert [c["label"] for c in cases] == [curve["label"] for curve in figure["curves"]]
+    pull = [-s.motion.mass * s.motion.vibration_acceleration / s.operating.force for s in scenes]
+    assert min(pull) < 1.0 < max(pull)
+    assert all(s.mesh.ny == 1 and s.motion.vibration == "half_sine_shock" and s.motion.shock_duration == 0.011
+               for s in scenes)

@@ -87,9 +87,10 @@ ACCURACY = {"accuracy_solve": 1, "accuracy_table": 1, "accuracy_figure": 1}
 SURFACES = {"surfaces_psd": 1}
 # the transient figures (workflow/rules/transient.smk, config/transient.yaml): test.yaml has
 # 2 stop curves (Table 1, mu = 0.3), the same 2 cases as the reconnect chart, 2 temperatures
-# of the datasheet oil, 1 vibration
-TRANSIENT = {"transient_case": 5, "transient_figure": 4}
-TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_temperature", "transient_vibration"]
+# of the datasheet oil, 1 vibration, 2 shocks
+TRANSIENT = {"transient_case": 7, "transient_figure": 5}
+TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_temperature", "transient_vibration",
+                     "transient_shock"]
 
 
 # --- plans and lint (no solving) ---------------------------------------------------------------
@@ -118,8 +119,8 @@ def test_default_grids(fresh):
     # R_peak) pairs with the baseline, fig04_measured: 2 surfaces: 25 curves of 26 speeds;
     # the full path (fig04p-10p) 1 + 3 + 3 + 4 + 3 = 14 curves of 26 speeds; fig12: 16 curves of 16.
     # transient: 5 stop curves + 7 viscosities x 3 forces (line contacts: none of them a stop
-    # curve) + 6 temperatures x 2 forces (the datasheet oil) + 1 vibration
-    transient = {"transient_case": 5 + 21 + 12 + 1, "transient_figure": 4}
+    # curve) + 6 temperatures x 2 forces (the datasheet oil) + 1 vibration + 3 shocks
+    transient = {"transient_case": 5 + 21 + 12 + 1 + 3, "transient_figure": 5}
     assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
@@ -197,17 +198,21 @@ def test_physical_trends(built):
 @pytest.mark.slow
 def test_transient_cases_have_units_and_reconnect(built):
     cases = sorted((built / "results" / "test" / "transient").glob("*.nc"))
-    assert len(cases) == 5
+    assert len(cases) == 7
     for path in cases:
         ds = xr.load_dataset(path)
         assert ds.attrs["scene_hash"] == path.stem and ds["converged"].item() == 1
         for name, var in ds.variables.items():
             assert var.attrs.get("units") and var.attrs.get("long_name"), (path.stem, name)
-        kind = yaml.safe_load(ds.attrs["scene"])["motion"]["kind"]
+        scene = yaml.safe_load(ds.attrs["scene"])
+        kind = scene["motion"]["kind"]
         if kind == "stop":  # Table 1, mu = 0.3 Pa s and the VG 100 oil at 20 and 45 C reconnect within the 50 ms run
             assert 0.0 < ds["reconnect_time"].item() < 0.05
-        else:
+        elif kind == "oscillation":
             assert ds["peak_resistance"].size == 1 and 0.0 <= ds["open_fraction"].item() <= 1.0
+        else:  # a shock: 30 g (m a below the 0.5 N preload) stays closed, 100 g (above) opens
+            pull = -scene["motion"]["mass"] * scene["motion"]["vibration_acceleration"]
+            assert (ds["event_count"].item() > 0) == (pull > scene["operating"]["force"])
 
 
 @pytest.mark.slow

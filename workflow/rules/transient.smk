@@ -1,5 +1,5 @@
-# Transient figures (lubecontact.transient): the Table 1 contact after a stop from 1 m/s and
-# under vibration. config/transient.yaml (deep-merged with config["transient"]) names the
+# Transient figures (lubecontact.transient): the Table 1 contact after a stop from 1 m/s,
+# under vibration and struck by shocks. config/transient.yaml (deep-merged with config["transient"]) names the
 # cases; each is a scene identified by its content hash, run once into
 # <results>/transient/<hash>.nc and shared by the figures that use it. Edits of the solver or
 # of the unsteady package rerun the cases (TRANSIENT_SOURCES).

@@ -9,6 +9,9 @@ series value; a run that never reconnected within its duration is drawn as a tri
 the top edge, one already reconnected when the block stopped (reconnect_time = 0) as a
 triangle on the bottom edge, a run that did not converge as a red cross.
 (c) ``vibration_figure``: speed and resistance over the cycles with the open threshold.
+(d) ``shock_figure``: a contact on its spring struck through its base, one curve per shock:
+the base acceleration (g), the resistance with the open threshold and each discontinuity
+event shaded, a lift-off (R infinite) drawn on the top edge, and the minimum film.
 Library code: matplotlib's object API, no files read.
 """
 
@@ -21,6 +24,8 @@ import numpy as np
 import yaml
 from matplotlib.figure import Figure
 
+from lubecontact.scene.scene import load_scene
+from lubecontact.unsteady.dynamics import BaseExcitation
 
 
 # A title line of at most this many characters fits the figures' 6.4 in width at 9 pt.
@@ -120,3 +125,73 @@ def vibration_figure(ds, title: str) -> Figure:
         f"open {100 * fraction:.0f} % of the oscillation time")
     fig.suptitle(f"{title}\n{details}; {open_text}", fontsize=9)  # wraps on its own lines: never cut
     return fig
+
+
+# standard gravity (m/s^2): shock tests give their peaks in g
+STANDARD_GRAVITY = 9.80665
+# the resistance axis of the shock figure ends at this many times the open threshold
+RESISTANCE_AXIS_TOP = 100.0
+# samples of the base acceleration drawn over the run (its formula, not the time levels)
+EXCITATION_SAMPLES = 1000
+
+
+def shock_figure(cases: list[tuple[str, object]], title: str) -> Figure:
+    """(label, Dataset) per shock of one contact (the same contact, scene.motion.mass and
+    spring_stiffness, struck through its base): base acceleration away from the block (g),
+    contact resistance (log) with the open threshold and its events shaded, minimum film
+    thickness (um), against time (ms). The resistance axis ends at ``RESISTANCE_AXIS_TOP`` x
+    the open threshold (above it the asperity tail gives finite but meaningless values, up to
+    1e175 ohm): higher values run along the top edge, and an instant with R infinite (the
+    asperities apart) is marked there with a triangle."""
+    fig = Figure(figsize=(7.0, 8.0), layout="constrained")
+    base, middle, bottom = fig.subplots(3, 1, sharex=True, height_ratios=(1.0, 2.0, 1.0))
+    resistances = [ds["contact_resistance"].values for _, ds in cases]
+    threshold = float(cases[0][1]["open_resistance"])
+    edge = RESISTANCE_AXIS_TOP * threshold
+    scenes = [load_scene(yaml.safe_load(ds.attrs["scene"])) for _, ds in cases]
+    for i, (label, ds) in enumerate(cases):
+        color = f"C{i}"
+        t_ms = ds["time"].values * 1e3
+        excitation = BaseExcitation.from_scene(scenes[i])
+        t = np.linspace(0.0, float(ds["time"].values[-1]), EXCITATION_SAMPLES)
+        away = [-excitation.acceleration_at(ti) / STANDARD_GRAVITY for ti in t]
+        base.plot(t * 1e3, away, color=color, label=label)
+        r = resistances[i]
+        lifted = np.isinf(r)
+        middle.semilogy(t_ms, np.minimum(r, edge), color=color, label=f"{label}: {_events_text(ds)}")
+        if lifted.any():  # (an empty line off the clip box would still stretch the layout)
+            middle.plot(t_ms[lifted], np.full(lifted.sum(), edge), "^", color=color, ms=5, clip_on=False)
+        for start, duration in zip(ds["event_start"].values, ds["event_duration"].values):
+            middle.axvspan(start * 1e3, (start + duration) * 1e3, color=color, alpha=0.15, lw=0)
+        bottom.plot(t_ms, ds["min_film_thickness"].values * 1e6, color=color)
+    middle.axhline(threshold, color="red", ls="--", label=f"open threshold {threshold:g} \u03a9")
+    if any(np.isinf(r).any() for r in resistances):
+        middle.plot([], [], "^", color="black", label="lift-off: resistance infinite, asperities apart")
+    middle.set_ylim(top=edge)
+    films = np.concatenate([ds["min_film_thickness"].values for _, ds in cases])
+    bottom.set_yscale("log" if (films > 0).all() else "linear")  # a film at or below zero stays drawn
+    base.set_ylabel("base acceleration\naway from the block (g)")
+    middle.set_ylabel("contact resistance (\u03a9)")
+    bottom.set_ylabel("minimum film\nthickness h (\u00b5m)")
+    bottom.set_xlabel("time (ms)")
+    middle.legend(fontsize=7, loc="center right")  # the curves' colours in every panel
+    fig.suptitle(wrapped(f"{title}: {_contact_text(scenes[0])}") + "\nshaded: events above the open threshold; "
+                 f"resistances above {edge:g} \u03a9 on the top edge",
+                 fontsize=9)
+    return fig
+
+
+def _events_text(ds) -> str:
+    """A curve's discontinuity events in words: how many and their total open time."""
+    count = int(ds["event_count"])
+    if count == 0:
+        return "no event"
+    still = " (still open at the end)" if bool(ds["event_open_at_end"].values[-1]) else ""
+    return f"{count} event(s), open {float(ds['event_open_time']) * 1e3:.3g} ms in all{still}"
+
+
+def _contact_text(scene) -> str:
+    """The struck contact (a Scene) in words with units: preload, mass, spring, viscosity."""
+    return (f"spring preload {scene.operating.force:g} N, moving mass {scene.motion.mass:g} kg, "
+            f"spring stiffness {scene.motion.spring_stiffness:g} N/m, "
+            f"lubricant viscosity {scene.lubricant.viscosity:g} Pa s")

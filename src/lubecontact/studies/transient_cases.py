@@ -1,9 +1,11 @@
 """The transient figures' cases (config/transient.yaml): which scenes to run, by content hash.
 
-A study names a base scene and overrides shared by every case, and its figures:
-``stop`` (curves: a list of {label, set: overrides}), design charts such as ``reconnect``
-and ``temperature`` (any figure with an ``x``: optional set: overrides of every case; x: a
-dotted key and its values, one line per value of ``series``), ``vibration`` (one case).
+A study names a base scene and overrides shared by every case, and its figures: curve
+figures such as ``stop`` and ``shock`` (any figure with ``curves``: a list of {label, set:
+overrides}, after the figure's optional set: overrides of every curve), design charts such
+as ``reconnect`` and ``temperature`` (any figure with an ``x``: optional set: overrides of
+every case; x: a dotted key and its values, one line per value of ``series``), and one case
+(any other figure, ``vibration``: its set).
 Each case is a scene; its hash is
 the case identity (results/transient/<hash>.nc), so a case shared by two figures (the
 baseline stop) runs once. Library code: reads only the base scene.
@@ -40,14 +42,16 @@ def _scene(spec: Mapping, overrides: Mapping):
 def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
     """figure -> its cases, each {"id": hash, "overrides": {...}, "label": str, and for the
     design chart "x" and "series"}. Raises SceneError naming a bad value."""
-    figures = spec["figures"]
     out = {}
-    stop = figures["stop"]
-    out["stop"] = [{"label": curve["label"], "overrides": dict(curve.get("set") or {})} for curve in stop["curves"]]
-    for name, chart in figures.items():
-        if "x" in chart:
-            out[name] = _design_chart(chart)
-    out["vibration"] = [{"label": "vibration", "overrides": dict(figures["vibration"]["set"])}]
+    for name, figure in spec["figures"].items():
+        if "curves" in figure:
+            shared = figure.get("set") or {}
+            out[name] = [{"label": curve["label"], "overrides": {**shared, **(curve.get("set") or {})}}
+                         for curve in figure["curves"]]
+        elif "x" in figure:
+            out[name] = _design_chart(figure)
+        else:
+            out[name] = [{"label": name, "overrides": dict(figure["set"])}]
     for cases in out.values():
         for case in cases:
             case["id"] = _scene(spec, case["overrides"]).hash
