@@ -9,8 +9,7 @@ times the cylinder length L.
 Automatic domain (``x_min``/``x_max`` = auto): the length scale
 ``s = max(2 b_H, sqrt(2 R * 10 sigma))`` covers the Hertz width b_H (Johnson, E*) and the
 inlet/outlet zone where the undeformed gap (Eq. 4) is below ten roughness heights, the
-film a fluid can build; smooth surfaces (no asperity contact) have s = 2 b_H, their film an
-elastohydrodynamic one resolved across the Hertz width. The domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the
+film a fluid can build. The domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the
 fluid pressure builds, than downstream, where it cavitates.
 
 The inlet follows the film (docs/physics.md section 17): a film h fed from an inlet that ends at
@@ -51,14 +50,8 @@ def contact_width_estimate(scene) -> float:
 
 
 def auto_length_scale(scene) -> float:
-    """s of the module docstring, m: the Hertz width, and with asperity contact the reach of
-    ten roughness heights (smooth surfaces have no roughness to reach: their film is an
-    elastohydrodynamic one, resolved across the Hertz width)."""
-    hertz = 2.0 * hertz_half_width(scene)
-    if not scene.effects.asperity_contact:
-        return hertz
     r, sigma = scene.geometry.radius, scene.roughness.sigma
-    return max(hertz, float(np.sqrt(2.0 * r * 10.0 * sigma)))
+    return max(2.0 * hertz_half_width(scene), float(np.sqrt(2.0 * r * 10.0 * sigma)))
 
 
 def film_inlet_length(scene) -> float:
