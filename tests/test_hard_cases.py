@@ -36,7 +36,8 @@ CASES = {
     "soft_film_M23": (False, {**SOFT_FILM, "operating.speed": 0.001},
                       "the nested solver's force balance fails; one Newton finishes it (converged)"),
     "smooth_default_mesh": (False, {"effects.asperity_contact": False, "operating.speed": 0.01},
-                            "51 x 51, automatic domain: converged = 0 with h_min = 3.8e-129 m, after 2.5 s"),
+                            "51 x 51, automatic domain (sized by sigma), converged = 0 with h_min = 3.8e-129 m: "
+                            "the nested force balance starts rigid (Martin's film is 1e-11 m) and collapses; 3 s"),
     "grease_1_Pa_s": (True, {**GREASE, "lubricant.viscosity": 1.0},
                       "a step fails at t = 2.2 ms (Newton and nested both), after 17 s"),
     "grease_10_Pa_s": (True, {**GREASE, "lubricant.viscosity": 10.0},
