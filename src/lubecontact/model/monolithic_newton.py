@@ -1,4 +1,5 @@
-"""One semismooth Newton for the coupled steady contact (docs/physics.md section 20).
+"""One semismooth Newton for the coupled contact, steady and one time step at a time
+(docs/physics.md section 20).
 
 The unknowns are the fluid pressure p at the Reynolds nodes, the deformation delta at every
 node and the cylinder position z; the film is h = h_o + z + delta (Eq. 3). One residual
@@ -7,6 +8,9 @@ holds the whole problem:
     R_p     = phi_FB(p, w(p, h) / A_ii)          cavitation p >= 0 _|_ outflow w >= 0
     R_delta = delta - K (p + p_c(h))             deformation, Eq. (3)
     R_z     = h_s (F_fluid + F_contact - F) / F  force balance, Eq. (18)
+
+(a time step adds its squeeze outflow to w, and a contact with mass and spring has F(z),
+Model.load).
 
 with w = A(h) p - b(h) the finite-volume outflow of each cell (numerics/reynolds.py), scaled
 by its diagonal to a pressure, phi_FB the Fischer-Burmeister function

@@ -1,6 +1,7 @@
-"""Implicit time integration of the quasi-static lubricated contact (docs/physics.md section 14).
+"""Implicit time integration of the lubricated contact (docs/physics.md section 14).
 
-At each instant the cylinder is in force balance (no inertia): F = F_contact(h) + F_fluid,
+At each instant the cylinder is in force balance: F = F_contact(h) + F_fluid, F the
+applied force (constant, or that of a contact with mass and spring, unsteady/dynamics.py),
 where the fluid pressure solves the averaged Reynolds equation with the squeeze term,
 
     div(k grad p) = (U/2) dh_T/dx + dh_T/dt,
@@ -12,8 +13,8 @@ BDF2 difference (BDF1 on the first step and after a breakpoint of the motion)
 
 which enters the Reynolds right-hand side as a nodal source and, through c0, the load
 sensitivity, so Newton on z keeps its quadratic convergence. Each step is one coupled
-solve (model/coupling.coupled_solve: force balance, deformation and cavitation as in the steady
-model) warm-started from the extrapolated film of the last steps.
+solve (step_solve: one Newton and the nested solve on a line contact, the nested solve on a
+2-D mesh) warm-started from the extrapolated film of the last steps.
 
 Error control (Milne's device): the film predicted by polynomial extrapolation through the
 last p + 1 levels and the BDF_p result differ by (P_p - D_p/c0) h^{(p+1)}, of which the
