@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -79,7 +80,8 @@ SMOOTHING_FACTOR = 1e-3
 # The smoothing is lowered (one more evaluation) once the residual allows a tenth of it.
 SMOOTHING_UPDATE = 0.1
 # Up to this many nodes (line contacts) the reduced Newton system is solved densely: its
-# matrix costs n back-substitutions and n FFTs, and its LU (n^3/3 flops) is ~0.1 s at 1500.
+# matrix costs n back-substitutions (K is built once per mesh), and its LU (n^3/3 flops) is
+# ~0.1 s at 1500.
 DENSE_NODES = 1500
 # A Newton iteration whose squared residual norm has not halved in STALL_ITERATIONS
 # iterations has stalled (far from its quadratic convergence): it stops there, cheaply, and
@@ -113,8 +115,6 @@ class Linearisation:
     r_delta: np.ndarray | None  # deformation residual, m (ny, nx); None for rigid bodies
     r_z: float  # scaled force residual, m
     unknown: np.ndarray | None  # (ny, nx) bool: the Reynolds unknowns
-    j_pp: sp.csc_matrix | None
-    j_ph: sp.csr_matrix | None
     contact_slope: np.ndarray  # dp_c/dh, Pa/m (zeros without asperity contact)
     pressure_scale: float  # p_s, Pa
     film_scale: float  # h_s, m
@@ -128,8 +128,23 @@ class Linearisation:
     def rebranched(self, slopes: tuple) -> "Linearisation":
         """The same residual with J_pp and J_ph weighted by other Fischer-Burmeister slopes
         (those of a nearby point where a pair changed branch)."""
-        j_pp, j_ph = self.parts.residual_jacobians(*slopes)
-        return dataclasses.replace(self, j_pp=j_pp, j_ph=j_ph, slopes=slopes)
+        return dataclasses.replace(self, slopes=slopes)
+
+    @cached_property
+    def jacobians(self) -> tuple:
+        """(J_pp, J_ph), built when a Newton direction asks for them (not for the trial
+        points of a line search); (None, None) without a fluid."""
+        return (None, None) if self.parts is None else self.parts.residual_jacobians(*self.slopes)
+
+    @property
+    def j_pp(self) -> sp.csc_matrix | None:
+        """d R_p / d p at the Reynolds unknowns (sparse)."""
+        return self.jacobians[0]
+
+    @property
+    def j_ph(self) -> sp.csr_matrix | None:
+        """d R_p / d h at every node (sparse)."""
+        return self.jacobians[1]
 
     def merit(self) -> float:
         """Half the squared norm of the scaled residual (p by p_s, films by h_s)."""
@@ -208,9 +223,8 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
     if reynolds is not None:
         reynolds.residual = float(np.max(np.abs(exact), initial=0.0)) / pressure_scale
     target, load_slope = (force, 0.0) if model.load is None else model.load.force(it.z)
-    lin = Linearisation(state, r_p, r_delta, scale_h * (state.total_force - target) / force, unknown, None, None,
-                        contact_slope, pressure_scale, scale_h, smoothing, load_slope, slopes, parts)
-    return lin if slopes is None else lin.rebranched(slopes)
+    return Linearisation(state, r_p, r_delta, scale_h * (state.total_force - target) / force, unknown, contact_slope,
+                         pressure_scale, scale_h, smoothing, load_slope, slopes, parts)
 
 
 def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None):
@@ -257,13 +271,11 @@ def dense_step_serves(model: Model) -> bool:
 
 
 def dense_influence(model: Model) -> np.ndarray | None:
-    """K as a dense (n, n) matrix from the influence operator's columns, for a deforming
-    model of at most DENSE_NODES nodes (line contacts), else None."""
-    mesh = model.mesh
-    n = mesh.nx * mesh.ny
+    """K as a dense (n, n) matrix (physics/deformation.ElasticDeformation.matrix, built once
+    per mesh), for a deforming model of at most DENSE_NODES nodes (line contacts), else None."""
     if model.deformation is None or not dense_step_serves(model):
         return None
-    return np.column_stack([model.deformation(column.reshape(mesh.shape)).ravel() for column in np.eye(n)])
+    return model.deformation.matrix
 
 
 def dense_reduced_solve(model: Model, lin: Linearisation, lu, weight: float, rhs: np.ndarray,

@@ -30,6 +30,8 @@ to round-off at O(N log N) per call; the kernel transform is built once.
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import numpy as np
 from scipy import fft
 from scipy.special import xlogy
@@ -117,11 +119,14 @@ class ElasticDeformation:
             return plane_strain_strip(x_offset, m.dx, self.effective_modulus, m.length)
         return love_rectangle(x_offset, y_offset, 0.5 * m.dx, 0.5 * m.dy, self.effective_modulus)
 
-    def _cell_pressure(self, pressure):
+    def _checked(self, pressure) -> np.ndarray:
         pressure = np.asarray(pressure, dtype=float)
         if pressure.shape != self.mesh.shape:
             raise ValueError(f"pressure has shape {pressure.shape}, the mesh needs {self.mesh.shape}")
-        return pressure * self._cell_weight
+        return pressure
+
+    def _cell_pressure(self, pressure):
+        return self._checked(pressure) * self._cell_weight
 
     def __call__(self, pressure):
         """Displacement (m, (ny, nx)) of both surfaces under the nodal pressure (Pa, (ny, nx)), by DC-FFT."""
@@ -129,9 +134,15 @@ class ElasticDeformation:
         u = fft.irfft2(self._kernel_hat * load_hat, s=self._padded)
         return u[: self.mesh.ny, : self.mesh.nx]
 
-    def direct(self, pressure):
-        """The same displacement by the O(N^2) sum over all node pairs (for tests; N^2 memory)."""
+    @cached_property
+    def matrix(self) -> np.ndarray:
+        """K as a dense (N, N) matrix, N the nodes in C order: the displacement at node i
+        under 1 Pa at node j, the O(N^2) sum over node pairs (N^2 memory: small meshes, the
+        dense Newton steps of line contacts; kept once built)."""
         xs, ys = np.meshgrid(self.mesh.x, self.mesh.y)
         xs, ys = xs.ravel(), ys.ravel()
-        matrix = self.influence(xs[:, None] - xs[None, :], ys[:, None] - ys[None, :])
-        return (matrix @ self._cell_pressure(pressure).ravel()).reshape(self.mesh.shape)
+        return self.influence(xs[:, None] - xs[None, :], ys[:, None] - ys[None, :]) * self._cell_weight.ravel()
+
+    def direct(self, pressure):
+        """The same displacement by the O(N^2) sum over all node pairs (for tests; N^2 memory)."""
+        return (self.matrix @ self._checked(pressure).ravel()).reshape(self.mesh.shape)
