@@ -39,18 +39,18 @@ CASES = {
                             "51 x 51, automatic domain (sized by sigma), converged = 0 with h_min = 3.8e-129 m: "
                             "the nested force balance starts rigid (Martin's film is 1e-11 m) and collapses; 3 s"),
     "grease_1_Pa_s": (True, {**GREASE, "lubricant.viscosity": 1.0},
-                      "a step fails at t = 2.2 ms (Newton and nested both), after 17 s"),
+                      "a step fails at t = 2.2 ms (Newton and nested both), after 10-17 s"),
     "grease_10_Pa_s": (True, {**GREASE, "lubricant.viscosity": 10.0},
-                       "a step fails at t = 4.7e-6 s (Newton and nested both), after 8 s"),
+                       "a step fails at t = 4.7e-6 to 5.1e-6 s (Newton and nested both), after 8-17 s"),
     "fretting_stiff_grease": (True, {**GREASE, "lubricant.viscosity": 100.0, "motion.amplitude": 50e-6,
                                      "motion.frequency": 100.0},
-                              "a step fails at t = 4.6e-7 s (Newton and nested both), after 4 s"),
+                              "a step fails at t = 3.4e-7 to 4.6e-7 s (Newton and nested both), after 4-5 s"),
     "heavy_load_stop": (True, {**QUICK, "operating.force": 20.0, "motion.kind": "stop", "motion.speed": 1.0,
                                "motion.duration": 0.01},
-                        "converges since a line contact's step is one Newton (the nested solve failed at 6.0 ms), 3.5 s"),
+                        "converges since a line contact's step is one Newton (the nested solve failed at 6.0 ms), 3.3-3.5 s"),
     "table1_tight_stop": (True, {**QUICK, "mesh.nx": 31, "operating.speed": 1.0, "motion.kind": "stop",
                                  "motion.tolerance": 1e-5, "motion.duration": 0.01},
-                          "converges since a line contact's step is one Newton (the nested solve failed at 7.3 ms), 3.3 s"),
+                          "converges since a line contact's step is one Newton (the nested solve failed at 7.3 ms), 2.9-3.3 s"),
 }
 
 
