@@ -180,10 +180,12 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         scale = system.matrix.diagonal()
         w = system.matrix @ p - system.rhs
         grease = yield_stress_law(model)
+        gap_slope = coefficient_slope = None  # nodal dh_T/dh and dk/dh, where a term needs them
+        if face_slopes is None or model.squeeze is not None or grease is not None:
+            _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)
         if grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
-            _, _, content_slope, nodal_slope = fluid_film(model, film, slopes=True)
-            grease_flow = yield_stress_outflow(mesh, system, pressure, k, h_t, content_slope, scene.operating.speed,
-                                               grease, faces, face_slopes, nodal_slope)
+            grease_flow = yield_stress_outflow(mesh, system, pressure, k, h_t, gap_slope, scene.operating.speed,
+                                               grease, faces, face_slopes, coefficient_slope)
             w, scale = grease_flow.outflow, grease_flow.scale
         if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
             r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
@@ -191,9 +193,6 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         else:
             r_p, d_a, d_b = fischer_burmeister(p, w / scale, smoothing)
             exact = fischer_burmeister(p, w / scale)[0] if smoothing > 0.0 else r_p
-        gap_slope = coefficient_slope = None
-        if face_slopes is None or model.squeeze is not None:
-            _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)
         j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, gap_slope,
                                            coefficient_slope)
         if model.squeeze is not None:  # the cell's squeeze outflow dA c0 h_T (docs/physics.md section 14)

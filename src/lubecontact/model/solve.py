@@ -26,6 +26,7 @@ from lubecontact.model.prepare import prepare
 from lubecontact.model.validity import assess, flag_bits
 from lubecontact.numerics.blas_threads import one_blas_thread
 
+
 def solve(scene, fields: bool = False, initial: WarmStart | None = None, return_state: bool = False):
     """Solve one operating point; returns the case ``xarray.Dataset`` (docs/DESIGN.md outputs),
     with ``return_state`` also the solver's final state (``solve_case``)."""

@@ -130,10 +130,11 @@ def motion_problems(scene) -> list[str]:
             f"motion.vibration_frequency_end = {m.vibration_frequency_end:g} Hz; allowed: an end above the start"
         )
     elif m.vibration != "none":
-        needed = (m.stop_time + m.duration) * BaseExcitation.from_scene(scene).highest_frequency() * STEPS_PER_VIBRATION_PERIOD
+        highest = BaseExcitation.from_scene(scene).highest_frequency()
+        needed = (m.stop_time + m.duration) * highest * STEPS_PER_VIBRATION_PERIOD
         if needed > MAX_STEPS:
             problems.append(
-                f"motion.vibration = {m.vibration!r} up to {BaseExcitation.from_scene(scene).highest_frequency():g} Hz "
+                f"motion.vibration = {m.vibration!r} up to {highest:g} Hz "
                 f"for motion.duration = {m.duration:g} s needs at least {needed:.3g} time steps "
                 f"({STEPS_PER_VIBRATION_PERIOD} a period); allowed: at most {MAX_STEPS} steps"
             )

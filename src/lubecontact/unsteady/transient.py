@@ -9,9 +9,9 @@ import sys
 import numpy as np
 import xarray as xr
 
-from lubecontact.model.monolithic_newton import steady_solve
 from lubecontact.model.fluid_film import yield_stress_law
 from lubecontact.model.model import Model
+from lubecontact.model.monolithic_newton import steady_solve
 from lubecontact.model.prepare import prepare
 from lubecontact.numerics.blas_threads import one_blas_thread
 from lubecontact.physics.yield_stress_flow import creep_squeeze_rate
