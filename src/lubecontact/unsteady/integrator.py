@@ -138,8 +138,10 @@ def step_solve(model: Model, initial: WarmStart):
     the 20 N stop and at motion.tolerance 1e-5 (tests/test_hard_cases.py). A contact with
     mass and spring (Model.load), a grease and solver.method newton have the Newton only. On a 2-D
     mesh, where the Newton's step is an unpreconditioned GMRES solve (slow), the nested
-    solve alone."""
-    if not dense_step_serves(model):
+    solve alone: a 31 x 31 mesh (961 nodes) would fit the dense step, but a Table 1 stop
+    took 160 s with it against 8 s nested (the dense 962-unknown factorisation every
+    iteration)."""
+    if model.mesh.ny > 1 or not dense_step_serves(model):
         return coupled_solve(model, initial)
     state, diag = monolithic_solve(model, initial, continuation=False)
     if model.load is not None or needs_newton(model):  # the nested solve has no F(z), nor a grease
