@@ -56,5 +56,6 @@ rule all:
         ALL_CASES.values(),
         expand(f"{RESULTS}/figures/surfaces_psd.{{ext}}", ext=["png", "pdf"]) if SURFACE_FILES else [],
         expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=TRANSIENT_FIGURES, ext=["png", "pdf"]),
+        expand(f"{RESULTS}/data/transient_{{name}}.{{ext}}", name=TRANSIENT_LADDERS, ext=["nc", "md"]),
         expand(f"{RESULTS}/transient/{{case}}.nc", case=TRANSIENT_OVERRIDES),
     default_target: True

@@ -16,6 +16,8 @@ never checks a time. tests/test_docs.py runs it.
     .venv/bin/python scripts/doc_numbers.py --runs --resume   # go on from a killed --runs (bench/out/)
     .venv/bin/python scripts/doc_numbers.py --runs --accuracy-study results/accuracy/study.nc
                                                       # the accuracy table from the workflow's study
+    .venv/bin/python scripts/doc_numbers.py --runs --only transient_accuracy \
+        --transient-accuracy results/data/transient_accuracy.nc   # one group, from the workflow's table
     .venv/bin/python scripts/doc_numbers.py --check   # are they current?
 """
 
@@ -245,24 +247,36 @@ RECORD = ROOT / "bench" / "out" / "doc_runs.json"
 STUDY = ROOT / "bench" / "out" / "doc_runs_study.nc"
 
 
-def run_blocks(accuracy_study: Path | None, resume: bool) -> dict[str, str]:
-    """Every block of the long runs by name (scripts/doc_runs.py), run now (with ``resume``,
-    the stops in RECORD and the study in STUDY are kept)."""
-    blocks = doc_runs.transient_blocks(RECORD, resume, progress)
-    if accuracy_study is None and resume and STUDY.is_file():
-        accuracy_study = STUDY
-    return {**blocks, "accuracy": doc_runs.accuracy_block(accuracy_study, progress, keep=STUDY)}
+RUN_GROUPS = ("transient", "accuracy", "transient_accuracy")  # --only: the groups of run blocks
+
+
+def run_blocks(accuracy_study: Path | None, transient_accuracy: Path | None, resume: bool,
+               only: tuple[str, ...] = RUN_GROUPS) -> dict[str, str]:
+    """The blocks of the long runs by name (scripts/doc_runs.py) of the groups ``only``, run
+    now (with ``resume``, the stops in RECORD and the study in STUDY are kept)."""
+    blocks = doc_runs.transient_blocks(RECORD, resume, progress) if "transient" in only else {}
+    if "accuracy" in only:
+        if accuracy_study is None and resume and STUDY.is_file():
+            accuracy_study = STUDY
+        blocks["accuracy"] = doc_runs.accuracy_block(accuracy_study, progress, keep=STUDY)
+    if "transient_accuracy" in only:
+        blocks["transient_accuracy"] = doc_runs.transient_accuracy_block(transient_accuracy, progress)
+    return blocks
 
 
 def progress(line: str) -> None:
     print(line, file=sys.stderr, flush=True)
 
 
-def with_runs(text: str, blocks: dict[str, str]) -> str:
+def with_runs(text: str, blocks: dict[str, str], complete: bool = True) -> str:
+    """``text`` with its run blocks rewritten from ``blocks``; a block not in ``blocks`` is
+    an error when they are ``complete`` (every group was run), else kept as it is."""
     def fill(match):
         name = match.group(1)
         if name not in blocks:
-            raise KeyError(f"unknown run block {name!r}; known: {', '.join(blocks)}")
+            if complete:
+                raise KeyError(f"unknown run block {name!r}; known: {', '.join(blocks)}")
+            return match.group(0)
         return f"<!-- run:{name} -->\n{blocks[name]}\n<!-- /run -->"
 
     return RUN.sub(fill, text)
@@ -288,19 +302,26 @@ def main(argv=None) -> int:
     parser.add_argument("--accuracy-study", type=Path, metavar="STUDY_NC",
                         help="with --runs: take the accuracy study from this file (the workflow's "
                              "results/accuracy/study.nc) instead of running it")
+    parser.add_argument("--transient-accuracy", type=Path, metavar="TABLE_NC",
+                        help="with --runs: take the transient's accuracy ladders from this file (the workflow's "
+                             "results/data/transient_accuracy.nc) instead of running them")
+    parser.add_argument("--only", nargs="+", choices=RUN_GROUPS, default=list(RUN_GROUPS),
+                        help="with --runs: rewrite only these groups of run blocks, keep the others")
     args = parser.parse_args(argv)
     if args.check and args.runs:
         parser.error("--check never reruns the long runs: give --check or --runs")
-    if (args.accuracy_study or args.resume) and not args.runs:
-        parser.error("--accuracy-study and --resume go with --runs")
-    if args.accuracy_study and not args.accuracy_study.is_file():
-        parser.error(f"--accuracy-study {args.accuracy_study}: no such file")
+    if (args.accuracy_study or args.transient_accuracy or args.resume) and not args.runs:
+        parser.error("--accuracy-study, --transient-accuracy and --resume go with --runs")
+    for given in (args.accuracy_study, args.transient_accuracy):
+        if given and not given.is_file():
+            parser.error(f"{given}: no such file")
     values = numbers()
-    blocks = run_blocks(args.accuracy_study, args.resume) if args.runs else None
+    only = tuple(args.only)
+    blocks = run_blocks(args.accuracy_study, args.transient_accuracy, args.resume, only) if args.runs else None
     stale = []
     for path in FILES:
         text = path.read_text()
-        wanted = current(with_runs(text, blocks) if blocks else text, values)
+        wanted = current(with_runs(text, blocks, complete=only == RUN_GROUPS) if blocks else text, values)
         if args.check:
             stale += [f"{path.relative_to(ROOT)}: {name} = {old} (now {new})"
                       for (kind, name, old), (_, _, new) in zip(MARK.findall(text), MARK.findall(wanted))

@@ -1,7 +1,9 @@
 """The long runs behind the numbers README.md quotes (scripts/doc_numbers.py calls this):
 transient stops of the Table 1 contact and its oil and grease variants (film, reconnect
-time, steps, their mesh dependence and CPU time) and the accuracy study of
-config/accuracy.yaml (the cheapest mesh for a target error, observed orders).
+time, steps, their mesh dependence and CPU time), the accuracy study of
+config/accuracy.yaml (the cheapest mesh for a target error, observed orders) and the
+transient's (config/transient.yaml's ``accuracy`` ladders: the reconnect time's mesh and
+time-step errors).
 
 Each function returns the text of one block ``<!-- run:NAME -->…<!-- /run -->`` of
 README.md; doc_numbers.py writes them with ``--runs`` (minutes: every transient below one
@@ -29,6 +31,9 @@ import yaml
 from lubecontact.scene import load_scene
 from lubecontact.studies.accuracy import accuracy_table, cost_table, run_study
 from lubecontact.studies.accuracy_plan import study_spec
+from lubecontact.studies.transient_accuracy import cheapest_within, ladder_table
+from lubecontact.studies.transient_cases import figure_cases
+from lubecontact.studies.transient_cases import study_spec as transient_spec
 from lubecontact.unsteady.transient import transient
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -213,3 +218,41 @@ def accuracy_block(study_file: Path | None = None, log=print, keep: Path | None 
                + ", ".join(f"{s:g}" for s in speeds) + " m/s." if paper is not None else "")
             + tolerance + domain]
     return "\n".join(text)
+
+
+def transient_accuracy_block(table_file: Path | None = None, log=print) -> str:
+    """README.md's paragraph on what a reconnect time's accuracy costs: the ladders of
+    config/transient.yaml's figure ``accuracy`` (studies/transient_accuracy.py), from the
+    workflow's table (``table_file``, its results/data/transient_accuracy.nc) or run here,
+    case by case (minutes: the 71 x 71 and 101 x 101 runs)."""
+    if table_file is None:
+        spec = transient_spec(ROOT / "config" / "transient.yaml")
+        spec["base"] = str(ROOT / spec["base"])
+        cases = figure_cases(spec)["accuracy"]
+        when = measured_on()
+        data = []
+        for case in cases:
+            data.append(transient(load_scene(spec["base"], {**spec.get("set", {}), **case["overrides"]}), progress=False))
+            log(f"transient accuracy, {case['label']}: reconnect {seconds(float(data[-1]['reconnect_time']))}")
+        table = ladder_table(cases, data)
+    else:
+        table = xr.load_dataset(table_file)
+        written = datetime.datetime.fromtimestamp(table_file.stat().st_mtime, datetime.timezone.utc)
+        when = f"from the workflow's {table_file.name} of {written:%Y-%m-%d}"
+    if table.attrs.get("notes"):
+        raise RuntimeError(f"the transient accuracy ladders are incomplete: {table.attrs['notes']}")
+    nodes, times = table["mesh"].values, table["mesh_reconnect_time"].values
+    errors, runs = table["mesh_error"].values, table["mesh_run_time"].values
+    members = ", ".join(f"{seconds(t)} on {n:g}² ({num(100 * e)} % low, {num(r)} s)" for n, t, e, r in zip(nodes, times, errors, runs))
+    tolerances = table["tolerance"].values
+    default = float(tolerances.max())
+    tol_error = float(table["tolerance_error"].values[tolerances.argmax()])
+    within = cheapest_within(table, "mesh", 0.05)
+    five = (f"The cheapest mesh within 5 % is {within[0]:g}² ({num(within[1])} s)." if within
+            else f"No mesh of the ladder is within 5 %: the finest, {nodes.max():g}², is {num(100 * errors[-1])} % low.")
+    return (f"The Table 1 stop's reconnect time (`results/data/transient_accuracy.md`, {when}; wall time of each run): "
+            f"{members}; extrapolated {seconds(float(table['mesh_extrapolated']))} (observed order "
+            f"{float(table['mesh_order']):.2g}). {five} On the default 51² mesh, the time-step tolerance's own error at "
+            f"its default ({default:g}) is {num(100 * tol_error)} % against its extrapolation "
+            f"{seconds(float(table['tolerance_extrapolated']))} (observed order {float(table['tolerance_order']):.2g}, "
+            f"over {', '.join(f'{t:g}' for t in sorted(tolerances, reverse=True))}).")

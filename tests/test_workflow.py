@@ -87,10 +87,11 @@ ACCURACY = {"accuracy_solve": 1, "accuracy_table": 1, "accuracy_figure": 1}
 SURFACES = {"surfaces_psd": 1}
 # the transient figures (workflow/rules/transient.smk, config/transient.yaml): test.yaml has
 # 2 stop curves (Table 1, mu = 0.3), the same 2 cases as the reconnect chart, 2 temperatures
-# of the datasheet oil, 1 vibration, 2 shocks
-TRANSIENT = {"transient_case": 7, "transient_figure": 5}
+# of the datasheet oil, 1 vibration, 2 shocks, and the accuracy ladders' 4 more (meshes 21 and
+# 41, tolerances 3e-3 and 1e-3; 31 nodes at 1e-2 is the stop figure's case) with their table
+TRANSIENT = {"transient_case": 11, "transient_figure": 5, "transient_accuracy": 1}
 TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_temperature", "transient_vibration",
-                     "transient_shock"]
+                     "transient_shock", "transient_accuracy"]
 
 
 # --- plans and lint (no solving) ---------------------------------------------------------------
@@ -118,9 +119,11 @@ def test_default_grids(fresh):
     # fig05/07/09/11 reuse those grids: 7 + 3 + 3 + 4 + 3 = 20 curves; fig04_alpha: 4 (sigma,
     # R_peak) pairs with the baseline, fig04_measured: 2 surfaces: 25 curves of 26 speeds;
     # the full path (fig04p-10p) 1 + 3 + 3 + 4 + 3 = 14 curves of 26 speeds; fig12: 16 curves of 16.
-    # transient: 5 stop curves + 7 viscosities x 3 forces (line contacts: none of them a stop
-    # curve) + 6 temperatures x 2 forces (the datasheet oil) + 1 vibration + 3 shocks
-    transient = {"transient_case": 5 + 21 + 12 + 1 + 3, "transient_figure": 5}
+    # transient: 5 stop curves + 7 viscosities x 3 forces (3 of them stop curves: Table 1,
+    # mu = 1 Pa s, F = 2 N) + 6 temperatures x 2 forces (the datasheet oil) + 1 vibration +
+    # 3 shocks + the accuracy ladders' meshes 31, 71, 101 and tolerances 5e-4, 2.5e-4 (51 x 51
+    # at 1e-3 is the stop figure's Table 1 case)
+    transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 5, "transient_figure": 5, "transient_accuracy": 1}
     assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
@@ -198,7 +201,7 @@ def test_physical_trends(built):
 @pytest.mark.slow
 def test_transient_cases_have_units_and_reconnect(built):
     cases = sorted((built / "results" / "test" / "transient").glob("*.nc"))
-    assert len(cases) == 7
+    assert len(cases) == 11
     for path in cases:
         ds = xr.load_dataset(path)
         assert ds.attrs["scene_hash"] == path.stem and ds["converged"].item() == 1
@@ -213,6 +216,11 @@ def test_transient_cases_have_units_and_reconnect(built):
         else:  # a shock: 30 g (m a below the 0.5 N preload) stays closed, 100 g (above) opens
             pull = -scene["motion"]["mass"] * scene["motion"]["vibration_acceleration"]
             assert (ds["event_count"].item() > 0) == (pull > scene["operating"]["force"])
+    # the accuracy ladders: the reconnect time grows with the mesh towards its extrapolation
+    ladder = xr.load_dataset(built / "results" / "test" / "data" / "transient_accuracy.nc")
+    times = ladder["mesh_reconnect_time"].values
+    assert np.all(np.diff(times) > 0.0) and float(ladder["mesh_extrapolated"]) > times[-1]
+    assert np.isfinite(ladder["tolerance_error"].values).all()
 
 
 @pytest.mark.slow

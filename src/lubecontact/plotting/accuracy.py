@@ -1,5 +1,7 @@
-"""The accuracy-cost figure: error of each quantity against the mesh-converged value
-versus solve time, one panel per quantity, one line per speed (studies/accuracy.py).
+"""The accuracy-cost figures: error of each quantity against the mesh-converged value
+versus solve time, one panel per quantity, one line per speed (studies/accuracy.py), and
+the transient's: a reconnect time on a ladder of meshes and of time-step tolerances
+(studies/transient_accuracy.py).
 """
 
 from __future__ import annotations
@@ -45,4 +47,49 @@ def plot_accuracy_cost(table: xr.Dataset):
     axes[-1].legend(fontsize="small", title="points: nodes a side (n \u00d7 n)", title_fontsize="small")
     fig.suptitle("What accuracy costs: error against the Richardson-extrapolated value vs wall time of one solve",
                  fontsize="medium")
+    return fig
+
+
+def plot_transient_accuracy(table: xr.Dataset, title: str):
+    """Figure ``transient_accuracy`` (studies/transient_accuracy.py): (a) the reconnect time
+    on each mesh of the ladder with its Richardson extrapolation and the grid convergence
+    index as a band; (b) the relative error of every ladder member (meshes, tolerances)
+    against its ladder's extrapolation versus the wall time of its run, the 5 % and 1 %
+    levels dotted. A ladder without extrapolation (a run that did not converge or never
+    reconnected) shows its reconnect times only."""
+    fig = Figure(figsize=(10.0, 4.4), layout="constrained")
+    left, right = fig.subplots(1, 2)
+    styles = {"mesh": ("C0", "o", "meshes (nodes along the sliding direction)"), "tolerance": ("C1", "s", "time-step tolerance")}
+    if "mesh" in table.coords:
+        nodes, times = table["mesh"].values, table["mesh_reconnect_time"].values * 1e3
+        left.plot(nodes, times, "o-", color="C0", label="reconnect time on the mesh")
+        extrapolated = float(table["mesh_extrapolated"]) * 1e3
+        if np.isfinite(extrapolated):
+            band = float(table["mesh_gci"]) * times[-1]
+            left.axhline(extrapolated, color="0.3", linestyle="--", linewidth=1.0,
+                         label=f"extrapolated: {extrapolated:.3g} ms (order {float(table['mesh_order']):.2f})")
+            left.axhspan(extrapolated - band, extrapolated + band, color="0.85", label="\u00b1 grid convergence index")
+        left.set_xlabel("nodes along the sliding direction")
+        left.set_ylabel("reconnect time (ms)")
+        left.legend(fontsize="small")
+        left.grid(True, alpha=0.3)
+    for part, (colour, marker, label) in styles.items():
+        if part not in table.coords:
+            continue
+        error, run_time = table[f"{part}_error"].values, table[f"{part}_run_time"].values
+        keep = np.isfinite(error) & (error > 0.0)
+        right.plot(run_time[keep], error[keep], marker=marker, color=colour, label=label)
+        for value, t, e in zip(table[part].values[keep], run_time[keep], error[keep]):
+            right.annotate(f"{value:g}", (t, e), textcoords="offset points", xytext=(3, 3), fontsize=7, color=colour)
+    for level, text in ((0.05, "5 %"), (0.01, "1 %")):
+        right.axhline(level, color="0.5", linestyle=":", linewidth=0.8)
+        right.annotate(text, (0.0, level), xycoords=("axes fraction", "data"), xytext=(2, 2),
+                       textcoords="offset points", fontsize=7, color="0.4")
+    right.set_xscale("log")
+    right.set_yscale("log")
+    right.set_xlabel("wall time of the run (s)")
+    right.set_ylabel("relative error of the reconnect time (\u2013)")
+    right.legend(fontsize="small", title="points: nodes, or tolerance", title_fontsize="small")
+    right.grid(True, which="major", alpha=0.3)
+    fig.suptitle(title, fontsize="medium")
     return fig

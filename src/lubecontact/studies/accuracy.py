@@ -329,7 +329,8 @@ def cheapest(table: xr.Dataset, quantity: str, speed_index: int, target: float) 
     return int(table["mesh"].values[best]), float(times[best])
 
 
-def _pct(x: float) -> str:
+def percent(x: float) -> str:
+    """A relative error as a percentage in two significant digits ('n/a' when not finite)."""
     if not np.isfinite(x):
         return "n/a"
     return f"{100 * x:.2g} %" if x >= 1e-4 else f"{100 * x:.1e} %"
@@ -348,7 +349,7 @@ def cost_table(table: xr.Dataset, quantities: Sequence[str], targets: Sequence[f
             for i in range(len(speeds)):
                 found = cheapest(table, q, i, target)
                 cells.append(f"{found[0]}², {found[1]:.3g} s" if found else "finer than the ladder")
-            lines.append(f"| {QUANTITIES[q].label} | {_pct(target)} | " + " | ".join(cells) + " |")
+            lines.append(f"| {QUANTITIES[q].label} | {percent(target)} | " + " | ".join(cells) + " |")
     return lines
 
 
@@ -375,13 +376,13 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
         lines.append("| mesh | nodes | x_min (mm) | solve time (s) | " + " | ".join(f"error {QUANTITIES[q].label}" for q in quantities) + " | converged |")
         lines.append("|" + "---|" * (5 + len(quantities)))
         for k, n in enumerate(table["mesh"].values):
-            errors = " | ".join(_pct(table[f"{q}_error"].values[i, k]) for q in quantities)
+            errors = " | ".join(percent(table[f"{q}_error"].values[i, k]) for q in quantities)
             lines.append(f"| {n} × {n} | {int(table['nodes'].values[i, k])} | {1e3 * table['x_min'].values[i, k]:.3g} | "
                          f"{table['solve_time'].values[i, k]:.3g} | {errors} | {int(table['converged'].values[i, k])} |")
         lines += ["", "| quantity | extrapolated | unit | observed order | GCI (finest mesh) | asymptotic |", "|---|---|---|---|---|---|"]
         for q in quantities:
             lines.append(f"| {QUANTITIES[q].label} | {table[f'{q}_extrapolated'].values[i]:.6g} | {table[q].attrs.get('units', '1')} | "
-                         f"{table[f'{q}_order'].values[i]:.3g} | {_pct(table[f'{q}_gci'].values[i])} | "
+                         f"{table[f'{q}_order'].values[i]:.3g} | {percent(table[f'{q}_gci'].values[i])} | "
                          f"{'yes' if table[f'{q}_asymptotic'].values[i] == 1 else 'no'} |")
         for part, what in (("domain", f"domain length (x), at the spacing of the {table.attrs.get('domain_mesh')}² mesh; "
                                       "change against the largest domain (domains stop at "
@@ -394,7 +395,7 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
             lines += ["", f"{what}:", "", f"| {part} | x_min (mm) | solve time (s) | " + " | ".join(QUANTITIES[q].label for q in quantities) + " |",
                       "|" + "---|" * (3 + len(quantities))]
             for k, key in enumerate(table[part].values):
-                changes = " | ".join(_pct(table[f"{part}_{q}_change"].values[i, k]) for q in quantities)
+                changes = " | ".join(percent(table[f"{part}_{q}_change"].values[i, k]) for q in quantities)
                 lines.append(f"| {key:g} | {1e3 * table[f'{part}_x_min'].values[i, k]:.3g} | "
                              f"{table[f'{part}_solve_time'].values[i, k]:.3g} | {changes} |")
     if table.attrs.get("notes"):

@@ -4,7 +4,8 @@ A study names a base scene and overrides shared by every case, and its figures: 
 figures such as ``stop`` and ``shock`` (any figure with ``curves``: a list of {label, set:
 overrides}, after the figure's optional set: overrides of every curve), design charts such
 as ``reconnect`` and ``temperature`` (any figure with an ``x``: optional set: overrides of
-every case; x: a dotted key and its values, one line per value of ``series``), and one case
+every case; x: a dotted key and its values, one line per value of ``series``), convergence
+ladders such as ``accuracy`` (any figure with ``meshes``: ``ladder_cases``), and one case
 (any other figure, ``vibration``: its set).
 Each case is a scene; its hash is
 the case identity (results/transient/<hash>.nc), so a case shared by two figures (the
@@ -50,6 +51,8 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
                          for curve in figure["curves"]]
         elif "x" in figure:
             out[name] = _design_chart(figure)
+        elif is_ladder(figure):
+            out[name] = ladder_cases(name, figure)
         else:
             out[name] = [{"label": name, "overrides": dict(figure["set"])}]
     for cases in out.values():
@@ -66,6 +69,44 @@ def _design_chart(chart: Mapping) -> list[dict]:
          "overrides": {**(chart.get("set") or {}), chart["x"]: x, series_key: s}}
         for s in series_values for x in chart["values"]
     ]
+
+
+def is_ladder(figure: Mapping) -> bool:
+    """Whether a transient figure is a convergence ladder (it names ``meshes``)."""
+    return "meshes" in figure
+
+
+def ladder_cases(name: str, ladder: Mapping) -> list[dict]:
+    """The cases of a convergence ladder (studies/transient_accuracy.py): the figure's scene
+    (its optional set:) on every mesh of ``meshes`` (n x n nodes, n x 1 with ``line: true``),
+    part "mesh", then on the mesh ``tolerances.mesh`` at every motion.tolerance of
+    ``tolerances.values``, part "tolerance". Each ladder needs three different values at
+    least (Richardson extrapolation with an observed order); ValueError names the figure."""
+    shared = dict(ladder.get("set") or {})
+    line = bool(ladder.get("line", False))
+
+    def nodes(n) -> dict:
+        if int(n) != n or n < 3:
+            raise ValueError(f"transient figure {name!r}: mesh nodes must be whole numbers >= 3, got {n!r}")
+        return {"mesh.nx": int(n), "mesh.ny": 1 if line else int(n)}
+
+    def shape(n) -> str:
+        return f"{n} \u00d7 {1 if line else n} nodes"
+
+    meshes = list(ladder["meshes"])
+    if len(set(meshes)) < 3:
+        raise ValueError(f"transient figure {name!r}: 'meshes' needs three different meshes at least, got {meshes}")
+    cases = [{"label": shape(n), "part": "mesh", "value": int(n), "overrides": {**shared, **nodes(n)}}
+             for n in sorted(meshes)]
+    tolerances = ladder.get("tolerances")
+    if tolerances is not None:
+        values = sorted((float(t) for t in tolerances["values"]), reverse=True)
+        if len(set(values)) < 3 or min(values) <= 0.0:
+            raise ValueError(f"transient figure {name!r}: 'tolerances.values' needs three different positive "
+                             f"tolerances at least, got {tolerances['values']}")
+        cases += [{"label": f"tolerance {t:g}, {shape(tolerances['mesh'])}", "part": "tolerance", "value": t,
+                   "overrides": {**shared, **nodes(tolerances["mesh"]), "motion.tolerance": t}} for t in values]
+    return cases
 
 
 def key_words(dotted: str) -> str:
