@@ -121,7 +121,7 @@ def test_default_grids(fresh):
     # the full path (fig04p-10p) 1 + 3 + 3 + 4 + 3 = 14 curves of 26 speeds; fig12: 16 curves of 16.
     # transient: 5 stop curves + 7 viscosities x 3 forces (3 of them stop curves: Table 1,
     # mu = 1 Pa s, F = 2 N) + 6 temperatures x 2 forces (the datasheet oil) + 1 vibration +
-    # 3 shocks + the accuracy ladders' meshes 31, 71, 101 and tolerances 5e-4, 2.5e-4 (51 x 51
+    # 3 shocks + the accuracy ladders' meshes 31, 71, 101 and tolerances 2e-3, 5e-4 (51 x 51
     # at 1e-3 is the stop figure's Table 1 case)
     transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 5, "transient_figure": 5, "transient_accuracy": 1}
     assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient)

@@ -10,6 +10,7 @@ import numpy as np
 import xarray as xr
 from matplotlib import colormaps
 from matplotlib.figure import Figure
+from matplotlib.ticker import NullFormatter
 
 from lubecontact.studies.accuracy import QUANTITIES
 
@@ -87,6 +88,7 @@ def plot_transient_accuracy(table: xr.Dataset, title: str):
                        textcoords="offset points", fontsize=7, color="0.4")
     right.set_xscale("log")
     right.set_yscale("log")
+    right.xaxis.set_minor_formatter(NullFormatter())  # within a decade the labels overlap
     right.set_xlabel("wall time of the run (s)")
     right.set_ylabel("relative error of the reconnect time (\u2013)")
     right.legend(fontsize="small", title="points: nodes, or tolerance", title_fontsize="small")
