@@ -213,8 +213,8 @@ def grease_block(record: Path, resume: bool = False, log=print) -> str:
         rows.append(f"| {label} | {film_text(run['film'])} | {film_text(run['film_at_stop'])} | "
                     f"{film_text(run['final_film'])} | {closed} | {seconds(run['reconnect'])} | {at_rest} | "
                     f"{num(run['cpu'])} s | {run['steps']} ({run['rejected']}) |")
-    ended = [f"The {figure[n][2].lower()} ends at {runs[n]['final_film'] / runs[n]['stop_film']:.4f} of its "
-             f"closed-form film. " for n in figure if runs[n]["stop_film"]]
+    ended = [f"{figure[n][2]}: the film ends at {runs[n]['final_film'] / runs[n]['stop_film']:.4f} of its "
+             f"closed-form stop film. " for n in figure if runs[n]["stop_film"]]
     rest = first.motion.duration - first.motion.ramp
     return "\n".join([
         f"Measured (`scripts/doc_numbers.py --runs`, CPU time of one process, {done['when']}): the cases of "
