@@ -217,7 +217,7 @@ def grease_block(record: Path, resume: bool = False, log=print) -> str:
              f"closed-form stop film. " for n in figure if runs[n]["stop_film"]]
     rest = first.motion.duration - first.motion.ramp
     return "\n".join([
-        f"Measured (`scripts/doc_numbers.py --runs`, CPU time of one process, {done['when']}): the cases of "
+        f"Measured (`scripts/doc_numbers.py --runs --only grease`, CPU time of one process, {done['when']}): the cases of "
         f"`transient_grease`, Table 1 at {first.operating.force:g} N as a {first.mesh.nx}-node line contact on "
         f"±{first.mesh.x_max * 1e3:g} mm, stopped from {first.motion.speed or first.operating.speed:g} m/s over "
         f"{first.motion.ramp * 1e3:g} ms and at rest for {rest:.3g} s:",
