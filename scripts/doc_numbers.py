@@ -18,6 +18,7 @@ never checks a time. tests/test_docs.py runs it.
                                                       # the accuracy table from the workflow's study
     .venv/bin/python scripts/doc_numbers.py --runs --only transient_accuracy \
         --transient-accuracy results/data/transient_accuracy.nc   # one group, from the workflow's table
+    .venv/bin/python scripts/doc_numbers.py --runs --only grease   # the grease figure's cases (a minute)
     .venv/bin/python scripts/doc_numbers.py --check   # are they current?
 """
 
@@ -244,16 +245,17 @@ def _same(kind: str, old: str, new: str) -> bool:
 
 # the measurements of the last --runs (git-ignored): --resume goes on from them
 RECORD = ROOT / "bench" / "out" / "doc_runs.json"
+GREASE_RECORD = ROOT / "bench" / "out" / "doc_runs_grease.json"
 STUDY = ROOT / "bench" / "out" / "doc_runs_study.nc"
 
 
-RUN_GROUPS = ("transient", "accuracy", "transient_accuracy")  # --only: the groups of run blocks
+RUN_GROUPS = ("transient", "accuracy", "transient_accuracy", "grease")  # --only: the groups of run blocks
 
 
 def run_blocks(accuracy_study: Path | None, transient_accuracy: Path | None, resume: bool,
                only: tuple[str, ...] = RUN_GROUPS) -> dict[str, str]:
     """The blocks of the long runs by name (scripts/doc_runs.py) of the groups ``only``, run
-    now (with ``resume``, the stops in RECORD and the study in STUDY are kept)."""
+    now (with ``resume``, the stops in RECORD and GREASE_RECORD and the study in STUDY are kept)."""
     blocks = doc_runs.transient_blocks(RECORD, resume, progress) if "transient" in only else {}
     if "accuracy" in only:
         if accuracy_study is None and resume and STUDY.is_file():
@@ -261,6 +263,8 @@ def run_blocks(accuracy_study: Path | None, transient_accuracy: Path | None, res
         blocks["accuracy"] = doc_runs.accuracy_block(accuracy_study, progress, keep=STUDY)
     if "transient_accuracy" in only:
         blocks["transient_accuracy"] = doc_runs.transient_accuracy_block(transient_accuracy, progress)
+    if "grease" in only:
+        blocks["grease"] = doc_runs.grease_block(GREASE_RECORD, resume, progress)
     return blocks
 
 

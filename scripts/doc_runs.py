@@ -1,6 +1,7 @@
 """The long runs behind the numbers README.md quotes (scripts/doc_numbers.py calls this):
 transient stops of the Table 1 contact and its oil and grease variants (film, reconnect
-time, steps, their mesh dependence and CPU time), the accuracy study of
+time, steps, their mesh dependence and CPU time), the cases of the transient study's grease
+figure (config/transient.yaml figures.grease), the accuracy study of
 config/accuracy.yaml (the cheapest mesh for a target error, observed orders) and the
 transient's (config/transient.yaml's ``accuracy`` ladders: the reconnect time's mesh and
 time-step errors).
@@ -28,7 +29,10 @@ import numpy as np
 import xarray as xr
 import yaml
 
+from lubecontact.physics.yield_stress_flow import bingham_squeeze_stop_film
+from lubecontact.plotting.transient import closed_form_stop_film, film_at_stop
 from lubecontact.scene import load_scene
+from lubecontact.studies import transient_cases
 from lubecontact.studies.accuracy import accuracy_table, cost_table, run_study
 from lubecontact.studies.accuracy_plan import study_spec
 from lubecontact.studies.transient_accuracy import cheapest_within, ladder_table
@@ -64,15 +68,22 @@ CHECKED = {"line31": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "me
 
 
 def stop(scene_file: str, overrides: dict) -> dict:
-    """One transient run: reconnect time (s), film at the initial speed (m), steps, rejected
-    steps, coupled solves, CPU seconds, converged."""
+    """One transient run: reconnect time (s), film at the initial speed, when the block came
+    to rest and at the end (m), the closed-form stop film of a grease where it describes the
+    run (m, else None: plotting/transient.closed_form_stop_film), whether the contact stayed
+    open (above the open threshold) all the time at rest, steps, rejected steps, coupled
+    solves, CPU seconds."""
     scene = load_scene(SCENES / scene_file, overrides)
     cpu = time.process_time()
     ds = transient(scene, progress=False)
     cpu = time.process_time() - cpu
     if int(ds["converged"]) != 1:
         raise RuntimeError(f"{scene_file} {overrides}: the transient did not converge; no number is quoted from it")
+    at_rest = ds["time"].values >= scene.motion.stop_time + scene.motion.ramp
     return {"reconnect": float(ds["reconnect_time"]), "film": float(ds["min_film_thickness"].values[0]),
+            "film_at_stop": film_at_stop(ds), "final_film": float(ds["min_film_thickness"].values[-1]),
+            "stop_film": closed_form_stop_film(scene, film_at_stop(ds)),
+            "open": bool((ds["contact_resistance"].values[at_rest] > float(ds["open_resistance"])).all()),
             "steps": int(ds["steps"]), "rejected": int(ds["rejected_steps"]),
             "solves": int(ds["coupled_solves"]), "cpu": cpu}
 
@@ -100,13 +111,16 @@ def later(a: float, b: float) -> str:
     return "later" if a > b else "sooner"
 
 
-def transient_runs(record: Path, resume: bool = False, log=print) -> dict:
-    """Every stop of RECONNECT and LINE_NODES, one after another, by name. Each result
+def transient_runs(record: Path, resume: bool = False, log=print, stops: dict | None = None) -> dict:
+    """Every stop of ``stops`` (name -> (scene file in config/scenes, overrides); by default
+    those of RECONNECT and LINE_NODES), one after another, by name. Each result
     goes to ``record`` (JSON) as soon as it ends, with when and where the runs began; with
     ``resume`` the stops already in ``record`` with the same scene are not run again (a run
     killed half-way goes on from there)."""
-    stops = {name: (scene_file, overrides) for name, (_, scene_file, overrides) in RECONNECT.items()}
-    stops |= {f"line{n}": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": n, "mesh.ny": 1}) for n in LINE_NODES}
+    if stops is None:
+        stops = {name: (scene_file, overrides) for name, (_, scene_file, overrides) in RECONNECT.items()}
+        stops |= {f"line{n}": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": n, "mesh.ny": 1})
+                  for n in LINE_NODES}
     done = json.loads(record.read_text()) if resume and record.is_file() else {"when": measured_on(), "runs": {}}
     for name, (scene_file, overrides) in stops.items():
         kept = done["runs"].get(name)
@@ -158,6 +172,64 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
              f"rest and on for {OIL:g} s takes **{num(t1['cpu'])} s at 51²** ({cost(t1)}), **{num(t101['cpu'])} s at "
              f"101²** ({cost(t101)}), {num(line['cpu'])} s as a 51-node line contact ({cost(line)}).")
     return {"reconnect": reconnect, "reconnect_mesh": reconnect_mesh, "transient_speed": speed}
+
+
+def grease_figure_stops() -> dict[str, tuple[str, dict, str]]:
+    """The cases of the transient study's grease figure as the workflow runs them
+    (config/transient.yaml alone, as the default run): name -> (scene file in config/scenes,
+    overrides, label)."""
+    spec = transient_cases.study_spec(ROOT / "config" / "transient.yaml")
+    cases = transient_cases.figure_cases(spec)["grease"]
+    overrides = transient_cases.case_overrides(spec, {"grease": cases})
+    scene_file = os.path.relpath(ROOT / spec["base"], SCENES)
+    return {f"grease{i}": (scene_file, overrides[case["id"]], case["label"]) for i, case in enumerate(cases)}
+
+
+def film_text(h: float) -> str:
+    """A film as the docs print it: two significant digits, in nm below 10 nm."""
+    return f"{num(h * 1e9)} nm" if h < 1e-8 else f"{num(h * 1e6)} µm"
+
+
+def grease_block(record: Path, resume: bool = False, log=print) -> str:
+    """README.md's ``grease`` block: the grease figure's cases (``grease_figure_stops``), each
+    with its films, its closed-form stop film, its reconnect time and its cost, and which of
+    them reconnect, stay open or end at their closed-form film."""
+    figure = grease_figure_stops()
+    done = transient_runs(record, resume, log, {name: (f, o) for name, (f, o, _) in figure.items()})
+    runs = done["runs"]
+    scenes = {name: load_scene(SCENES / f, o) for name, (f, o, _) in figure.items()}
+    first = scenes[next(iter(scenes))]
+    rows = []
+    for name, (_, _, label) in figure.items():
+        run, scene = runs[name], scenes[name]
+        closed = "–"
+        if scene.lubricant.rheology == "bingham":
+            h_stop = bingham_squeeze_stop_film(scene.operating.force, scene.geometry.length, scene.geometry.radius,
+                                               scene.mesh.x_max, scene.lubricant.yield_stress)
+            closed = film_text(h_stop) + ("" if run["stop_film"] else " (not drawn: the asperities share the load)")
+        at_rest = ("reconnected" if math.isfinite(run["reconnect"]) else
+                   f"open (above {scene.interface.open_resistance:g} Ω) throughout" if run["open"] else
+                   f"closed, above {scene.motion.reconnect_factor:g} × its resistance at rest")
+        rows.append(f"| {label} | {film_text(run['film'])} | {film_text(run['film_at_stop'])} | "
+                    f"{film_text(run['final_film'])} | {closed} | {seconds(run['reconnect'])} | {at_rest} | "
+                    f"{num(run['cpu'])} s | {run['steps']} ({run['rejected']}) |")
+    ended = [f"{figure[n][2]}: the film ends at {runs[n]['final_film'] / runs[n]['stop_film']:.4f} of its "
+             f"closed-form stop film. " for n in figure if runs[n]["stop_film"]]
+    rest = first.motion.duration - first.motion.ramp
+    return "\n".join([
+        f"Measured (`scripts/doc_numbers.py --runs --only grease`, CPU time of one process, {done['when']}): the cases of "
+        f"`transient_grease`, Table 1 at {first.operating.force:g} N as a {first.mesh.nx}-node line contact on "
+        f"±{first.mesh.x_max * 1e3:g} mm, stopped from {first.motion.speed or first.operating.speed:g} m/s over "
+        f"{first.motion.ramp * 1e3:g} ms and at rest for {rest:.3g} s:",
+        "",
+        f"| lubricant | film at {first.motion.speed or first.operating.speed:g} m/s | film at the stop | film at the end | "
+        "closed-form stop film | reconnect_time | at rest | CPU | steps (rejected) |",
+        "|---|---|---|---|---|---|---|---|---|",
+        *rows,
+        "",
+        "".join(ended) + f"The figure's {len(figure)} cases take {num(sum(runs[n]['cpu'] for n in figure))} s of CPU "
+        "in all.",
+    ])
 
 
 def checked_number(name: str) -> str:

@@ -1,7 +1,10 @@
 """The transient figures (lubecontact.plotting.transient) on synthetic series: a title that
 fits the figure, series whose markers stay visible where they coincide (issue 29 item 12);
 the shock figure (issue 28 item 6) on synthetic series and on one real lift-off, and the
-shock study's cases (config/transient.yaml) planned by their scene hashes."""
+shock study's cases (config/transient.yaml) planned by their scene hashes; the grease figure
+(issue 28 item 6) on synthetic series against the closed-form stop film, and its cases."""
+
+import math
 
 import numpy as np
 import pytest
@@ -12,6 +15,7 @@ from matplotlib.text import Text
 from test_transient import CONFIG_KEY
 
 import lubecontact as lc
+from lubecontact.physics.yield_stress_flow import bingham_squeeze_stop_film
 from lubecontact.plotting import transient as plots
 from lubecontact.plotting.figures import unit_label
 from lubecontact.studies import transient_cases as study
@@ -190,3 +194,89 @@ def test_the_shock_study_plans_one_case_per_shock_by_its_scene(overrides):
     assert min(pull) < 1.0 < max(pull)
     assert all(s.mesh.ny == 1 and s.motion.vibration == "half_sine_shock" and s.motion.shock_duration == 0.011
                for s in scenes)
+
+
+def grease_scenes(overrides=None):
+    """label -> scene of each curve of the grease figure (config/transient.yaml)."""
+    spec = study.study_spec("config/transient.yaml", overrides)
+    cases = study.figure_cases(spec)["grease"]
+    full = study.case_overrides(spec, {"grease": cases})
+    return {case["label"]: lc.load_scene(spec["base"], full[case["id"]]) for case in cases}
+
+
+def stopped(scene, film, resistance, reconnect):
+    """A synthetic stop of ``scene``: ``film`` (m) and ``resistance`` (ohm) on 0..30 s, at rest
+    from 1 ms (the study's ramp)."""
+    t = np.concatenate([[0.0, 1e-3], np.logspace(-2.9, np.log10(30.0), len(film) - 2)])
+    return xr.Dataset(
+        {"contact_resistance": ("time", np.asarray(resistance, dtype=float)),
+         "min_film_thickness": ("time", np.asarray(film, dtype=float)),
+         "rest_resistance": ((), 8.4e-5), "open_resistance": ((), 10.0), "reconnect_time": ((), reconnect),
+         "converged": ((), 1)},
+        coords={"time": t}, attrs={"scene": scene.canonical_yaml()},
+    )
+
+
+def grease_cases():
+    """The figure's four curves as synthetic stops: the oil and the 1 kPa grease reconnect,
+    the 3 kPa one stops at 2.4 sigma (closed, never reconnected), the 5 kPa one at its
+    closed-form film (open throughout)."""
+    scenes = grease_scenes()
+    falling = np.linspace(0.0, 1.0, 12)
+    shapes = [(4.1e-6, 0.65e-6, 1e3, 8.4e-5, 3.3e-3), (4.6e-6, 0.76e-6, 1e4, 1.3e-4, 8.2e-3),
+              (5.9e-6, 1.2e-6, 1e12, 9.7e-4, math.inf), (7.5e-6, 4.47e-6, 1e26, 5.6e11, math.inf)]
+    return [(label, stopped(scene, h0 + (h1 - h0) * falling, r0 * (r1 / r0) ** falling, recon))
+            for (label, scene), (h0, h1, r0, r1, recon) in zip(scenes.items(), shapes)]
+
+
+def test_the_grease_figure_draws_the_closed_form_stop_only_where_it_holds():
+    cases = grease_cases()
+    fig = plots.grease_stop_figure(cases, "A stop with a Bingham grease")
+    film, resistance = fig.axes
+    dashed = [line for line in film.get_lines() if line.get_linestyle() == "--"]
+    # only the 5 kPa grease: 1 kPa's stop film (0.19 nm) and 3 kPa's (0.79 um) lie below 3 sigma
+    scene = lc.load_scene(yaml.safe_load(cases[3][1].attrs["scene"]))
+    h_stop = bingham_squeeze_stop_film(0.5, 1e-3, 0.01, 1e-3, 5000.0)  # F, L, R, a, tau_y
+    assert h_stop == pytest.approx(4.47e-6, rel=1e-3)
+    line, = dashed
+    assert list(line.get_ydata()) == pytest.approx([h_stop * 1e6] * 2)
+    curve = next(l for l in film.get_lines() if l.get_linestyle() == "-" and l.get_color() == line.get_color())
+    assert curve.get_ydata()[-1] == pytest.approx(4.47)  # the 5 kPa curve, in its colour
+    assert plots.closed_form_stop_film(scene, 7.5e-6) == h_stop
+    assert plots.closed_form_stop_film(scene, 4.0e-6) is None  # the stop leaves a thinner film: no squeeze to it
+    for off in ({"motion.spring_stiffness": 2000.0}, {"mesh.x_min": -2e-3}, {"mesh.x_min": "auto", "mesh.x_max": "auto"}):
+        assert plots.closed_form_stop_film(lc.load_scene(scene, off), 7.5e-6) is None, off
+    sigma, = [l for l in film.get_lines() if l.get_linestyle() == ":"]
+    assert list(sigma.get_ydata()) == [0.5, 0.5] and "0.5 \u00b5m" in sigma.get_label()
+    threshold, = [l for l in resistance.get_lines() if l.get_label().startswith("open threshold")]
+    assert list(threshold.get_ydata()) == [10.0, 10.0] and threshold.get_linestyle() == "--"
+    assert film.get_yscale() == resistance.get_yscale() == resistance.get_xscale() == "log"
+
+
+def test_the_grease_figure_says_which_cases_reconnect_in_words_within_its_width():
+    fig = plots.grease_stop_figure(grease_cases(), "A stop with a Bingham grease: Table 1 contact at 0.5 N, "
+                                                   "stopped from 1 m/s (line contact)")
+    assert_the_title_fits(fig)
+    legend = [text.get_text() for text in fig.legends[0].get_texts()]
+    assert legend[0].endswith(": reconnects 3.3 ms after the stop")
+    assert legend[2].endswith(": not reconnected 30 s after the stop")  # closed (1e-3 ohm) but above 2 x rest
+    assert legend[3].endswith(": not reconnected 30 s after the stop, open (above 10 \u03a9) throughout")
+    texts = [text.get_text() for text in fig.findobj(Text) if text.get_text()]
+    assert not [text for text in texts if CONFIG_KEY.search(text)]
+    labels = [ax.get_ylabel() for ax in fig.axes] + [fig.axes[-1].get_xlabel()]
+    assert all(label.endswith(")") and "(" in label for label in labels)  # each with its unit
+
+
+@pytest.mark.parametrize("overrides", [None, "config/test.yaml"])
+def test_the_grease_study_has_a_grease_that_never_touches(overrides):
+    """The grease figure's cases (and the test configuration's): line contacts on a domain
+    symmetric about the contact, the oil and Bingham greases of its viscosity, one of them with
+    its closed-form stop film in the full film (the one tests/test_grease_stop.py runs)."""
+    extra = yaml.safe_load(open(overrides))["transient"] if overrides else None
+    scenes = list(grease_scenes(extra).values())
+    assert all(s.mesh.ny == 1 and s.mesh.x_min == -s.mesh.x_max for s in scenes)
+    greases = [s for s in scenes if s.lubricant.rheology == "bingham"]
+    assert greases and all(s.lubricant.viscosity == scenes[0].lubricant.viscosity for s in greases)
+    stops = [bingham_squeeze_stop_film(s.operating.force, s.geometry.length, s.geometry.radius, s.mesh.x_max,
+                                       s.lubricant.yield_stress) / s.roughness.sigma for s in greases]
+    assert max(stops) > plots.FULL_FILM_RATIO and min(stops) < 1.0  # one never touches, one reconnects

@@ -13,6 +13,7 @@ scene); file signatures of PNG and PDF.
 import contextlib
 import html.parser
 import json
+import math
 import re
 import shutil
 import subprocess
@@ -26,6 +27,8 @@ import xarray as xr
 import yaml
 from matplotlib.image import imread
 
+from lubecontact.plotting.transient import closed_form_stop_film, film_at_stop
+from lubecontact.scene import load_scene
 from lubecontact.studies import figure_grids as grid
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -87,11 +90,12 @@ ACCURACY = {"accuracy_solve": 1, "accuracy_table": 1, "accuracy_figure": 1}
 SURFACES = {"surfaces_psd": 1}
 # the transient figures (workflow/rules/transient.smk, config/transient.yaml): test.yaml has
 # 2 stop curves (Table 1, mu = 0.3), the same 2 cases as the reconnect chart, 2 temperatures
-# of the datasheet oil, 1 vibration, 2 shocks, and the accuracy ladders' 4 more (meshes 21 and
-# 41, tolerances 3e-3 and 1e-3; 31 nodes at 1e-2 is the stop figure's case) with their table
-TRANSIENT = {"transient_case": 11, "transient_figure": 5, "transient_accuracy": 1}
+# of the datasheet oil, 1 vibration, 2 shocks, the accuracy ladders' 4 more (meshes 21 and
+# 41, tolerances 3e-3 and 1e-3; 31 nodes at 1e-2 is the stop figure's case) with their table,
+# and 2 greases
+TRANSIENT = {"transient_case": 13, "transient_figure": 6, "transient_accuracy": 1}
 TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_temperature", "transient_vibration",
-                     "transient_shock", "transient_accuracy"]
+                     "transient_shock", "transient_accuracy", "transient_grease"]
 
 
 # --- plans and lint (no solving) ---------------------------------------------------------------
@@ -122,8 +126,8 @@ def test_default_grids(fresh):
     # transient: 5 stop curves + 7 viscosities x 3 forces (3 of them stop curves: Table 1,
     # mu = 1 Pa s, F = 2 N) + 6 temperatures x 2 forces (the datasheet oil) + 1 vibration +
     # 3 shocks + the accuracy ladders' meshes 31, 71, 101 and tolerances 2e-3, 5e-4 (51 x 51
-    # at 1e-3 is the stop figure's Table 1 case)
-    transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 5, "transient_figure": 5, "transient_accuracy": 1}
+    # at 1e-3 is the stop figure's Table 1 case) + the oil and 3 greases at 0.5 N
+    transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 5 + 4, "transient_figure": 6, "transient_accuracy": 1}
     assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
@@ -201,7 +205,7 @@ def test_physical_trends(built):
 @pytest.mark.slow
 def test_transient_cases_have_units_and_reconnect(built):
     cases = sorted((built / "results" / "test" / "transient").glob("*.nc"))
-    assert len(cases) == 11
+    assert len(cases) == 13
     for path in cases:
         ds = xr.load_dataset(path)
         assert ds.attrs["scene_hash"] == path.stem and ds["converged"].item() == 1
@@ -209,8 +213,15 @@ def test_transient_cases_have_units_and_reconnect(built):
             assert var.attrs.get("units") and var.attrs.get("long_name"), (path.stem, name)
         scene = yaml.safe_load(ds.attrs["scene"])
         kind = scene["motion"]["kind"]
-        if kind == "stop":  # Table 1, mu = 0.3 Pa s and the VG 100 oil at 20 and 45 C reconnect within the 50 ms run
-            assert 0.0 < ds["reconnect_time"].item() < 0.05
+        # (a datasheet oil's scene, which carries its derived viscosity, is not loaded again)
+        grease = load_scene(scene) if scene["lubricant"].get("rheology") == "bingham" else None
+        if grease is not None and closed_form_stop_film(grease, film_at_stop(ds)) is not None:
+            # the 5 kPa grease: its yield stress alone holds the load in the full film, open throughout
+            assert math.isinf(ds["reconnect_time"].item())
+            at_rest = ds["time"].values >= grease.motion.stop_time + grease.motion.ramp
+            assert (ds["contact_resistance"].values[at_rest] > ds["open_resistance"].item()).all()
+        elif kind == "stop":  # Table 1, mu = 0.3 Pa s, the VG 100 oil at 20 and 45 C and the 1 kPa
+            assert 0.0 < ds["reconnect_time"].item() < 0.05  # grease reconnect within the 50 ms run
         elif kind == "oscillation":
             assert ds["peak_resistance"].size == 1 and 0.0 <= ds["open_fraction"].item() <= 1.0
         else:  # a shock: 30 g (m a below the 0.5 N preload) stays closed, 100 g (above) opens

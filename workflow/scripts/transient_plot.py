@@ -10,7 +10,7 @@ from lubecontact.plotting.figures import save, unit_label
 from lubecontact.studies import transient_cases as study
 
 # the figures of curves (config/transient.yaml: a list of {label, set}), each drawn by its own function
-CURVE_FIGURES = {"stop": plots.stop_figure, "shock": plots.shock_figure}
+CURVE_FIGURES = {"stop": plots.stop_figure, "shock": plots.shock_figure, "grease": plots.grease_stop_figure}
 
 with open(snakemake.log[0], "w") as log:
     sys.stdout = sys.stderr = log

@@ -12,6 +12,9 @@ triangle on the bottom edge, a run that did not converge as a red cross.
 (d) ``shock_figure``: a contact on its spring struck through its base, one curve per shock:
 the base acceleration (g), the resistance with the open threshold and each discontinuity
 event shaded, a lift-off (R infinite) drawn on the top edge, and the minimum film.
+(e) ``grease_stop_figure``: one contact stopped with a base oil and with Bingham greases: the
+minimum film (log) with sigma and each grease's closed-form stop film
+(``closed_form_stop_film``), the resistance with the open threshold, whether each reconnects.
 Library code: matplotlib's object API, no files read.
 """
 
@@ -23,7 +26,9 @@ import textwrap
 import numpy as np
 import yaml
 from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter
 
+from lubecontact.physics.yield_stress_flow import bingham_squeeze_stop_film
 from lubecontact.scene.scene import load_scene
 from lubecontact.unsteady.dynamics import BaseExcitation
 
@@ -42,23 +47,43 @@ def _rest_from(ds) -> float:
     return float(motion.get("stop_time", 0.0)) + float(motion.get("ramp", 0.0))
 
 
-def stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
-    fig = Figure(figsize=(7.0, 6.5), layout="constrained")
-    top, bottom = fig.subplots(2, 1, sharex=True)
+def _stop_curves(cases: list[tuple[str, object]], resistance_ax, film_ax, edge: float = math.inf) -> None:
+    """Each (label, Dataset) of a stop against the time after the stop (log): its resistance
+    on ``resistance_ax`` (log; above ``edge`` along the top edge, ``_clipped_resistance``)
+    with 2 x its resistance at rest dotted and its reconnect time a dot, its minimum film (um)
+    on ``film_ax``; a run that did not converge ends in a red cross. Colour Ci for case i."""
     for i, (label, ds) in enumerate(cases):
         color = f"C{i}"
         t = ds["time"].values - _rest_from(ds)
         after = t > 0
-        top.loglog(t[after], ds["contact_resistance"].values[after], color=color, label=label)
-        top.axhline(float(ds["rest_resistance"]) * 2.0, color=color, ls=":", lw=0.8)
+        resistance = ds["contact_resistance"].values[after]
+        _clipped_resistance(resistance_ax, t[after], resistance, edge, color, label)
+        resistance_ax.axhline(float(ds["rest_resistance"]) * 2.0, color=color, ls=":", lw=0.8)
         recon = float(ds["reconnect_time"])
         if math.isfinite(recon) and recon > 0:
-            top.plot([recon], [2.0 * float(ds["rest_resistance"])], "o", color=color, ms=5)
-        bottom.semilogx(t[after], ds["min_film_thickness"].values[after] * 1e6, color=color)
+            resistance_ax.plot([recon], [2.0 * float(ds["rest_resistance"])], "o", color=color, ms=5)
+        film_ax.plot(t[after], ds["min_film_thickness"].values[after] * 1e6, color=color)
         if not int(ds["converged"]):
-            top.plot(t[after][-1:], ds["contact_resistance"].values[after][-1:], "x", color="red", ms=9)
-    top.set_ylabel("contact resistance (\u03a9)")
-    bottom.set_ylabel("minimum film thickness h (\u00b5m)")
+            resistance_ax.plot(t[after][-1:], np.minimum(resistance[-1:], edge), "x", color="red", ms=9)
+    resistance_ax.set_xscale("log")
+    resistance_ax.set_yscale("log")
+    resistance_ax.set_ylabel("contact resistance (\u03a9)")
+    film_ax.set_ylabel("minimum film thickness h (\u00b5m)")
+
+
+def _clipped_resistance(ax, t, resistance, edge: float, color: str, label: str) -> None:
+    """``resistance`` against ``t`` on ``ax``, values above ``edge`` along the top edge and
+    the instants with R infinite (no asperity touching) marked there with a triangle."""
+    ax.plot(t, np.minimum(resistance, edge), color=color, label=label)
+    lifted = np.isinf(resistance)
+    if lifted.any() and math.isfinite(edge):  # (an empty line off the clip box would still stretch the layout)
+        ax.plot(t[lifted], np.full(lifted.sum(), edge), "^", color=color, ms=5, clip_on=False)
+
+
+def stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
+    fig = Figure(figsize=(7.0, 6.5), layout="constrained")
+    top, bottom = fig.subplots(2, 1, sharex=True)
+    _stop_curves(cases, top, bottom)
     bottom.set_xlabel("time after the stop (s)")
     top.legend(fontsize=7, loc="upper right")
     top.set_title(wrapped(title) + "\ndotted: 2 \u00d7 resistance at rest; dots: reconnect time", fontsize=9)
@@ -156,17 +181,14 @@ def shock_figure(cases: list[tuple[str, object]], title: str) -> Figure:
         t = np.linspace(0.0, float(ds["time"].values[-1]), EXCITATION_SAMPLES)
         away = [-excitation.acceleration_at(ti) / STANDARD_GRAVITY for ti in t]
         base.plot(t * 1e3, away, color=color, label=label)
-        r = resistances[i]
-        lifted = np.isinf(r)
-        middle.semilogy(t_ms, np.minimum(r, edge), color=color, label=f"{label}: {_events_text(ds)}")
-        if lifted.any():  # (an empty line off the clip box would still stretch the layout)
-            middle.plot(t_ms[lifted], np.full(lifted.sum(), edge), "^", color=color, ms=5, clip_on=False)
+        _clipped_resistance(middle, t_ms, resistances[i], edge, color, f"{label}: {_events_text(ds)}")
         for start, duration in zip(ds["event_start"].values, ds["event_duration"].values):
             middle.axvspan(start * 1e3, (start + duration) * 1e3, color=color, alpha=0.15, lw=0)
         bottom.plot(t_ms, ds["min_film_thickness"].values * 1e6, color=color)
     middle.axhline(threshold, color="red", ls="--", label=f"open threshold {threshold:g} \u03a9")
     if any(np.isinf(r).any() for r in resistances):
         middle.plot([], [], "^", color="black", label="lift-off: resistance infinite, asperities apart")
+    middle.set_yscale("log")
     middle.set_ylim(top=edge)
     films = np.concatenate([ds["min_film_thickness"].values for _, ds in cases])
     bottom.set_yscale("log" if (films > 0).all() else "linear")  # a film at or below zero stays drawn
@@ -195,3 +217,98 @@ def _contact_text(scene) -> str:
     return (f"spring preload {scene.operating.force:g} N, moving mass {scene.motion.mass:g} kg, "
             f"spring stiffness {scene.motion.spring_stiffness:g} N/m, "
             f"lubricant viscosity {scene.lubricant.viscosity:g} Pa s")
+
+
+# A film h above this many sigma is a full film: the film parameter Lambda = h/sigma > 3
+# (Hamrock & Dowson, Ball Bearing Lubrication, Wiley 1981), the asperities' share of the
+# load small: in the grease figure's runs (Table 1 at 0.5 N, 101 nodes) they carry 1.8-2.6 %
+# of it as the film passes 3 sigma, 0.06-0.15 % at 4 sigma (docs/physics.md section 21).
+FULL_FILM_RATIO = 3.0
+
+
+def closed_form_stop_film(scene, film_at_stop: float) -> float | None:
+    """The film (m) at which a Bingham grease's yield stress alone holds the load of ``scene``
+    (physics/yield_stress_flow.bingham_squeeze_stop_film: a rigid smooth cylinder on a line
+    contact, p = 0 at x = -a and a), or None where the closed form does not describe the run:
+    not a Bingham grease, not a stop, not a line contact on a domain symmetric about the
+    contact (its half-width is a), a force that is not constant (a spring or a base
+    excitation), a stop film below FULL_FILM_RATIO sigma (the asperities share the load) or
+    not below ``film_at_stop``, the film when the block came to rest (the squeeze never
+    reaches it: the plug holds the film where it is)."""
+    lubricant, mesh, motion = scene.lubricant, scene.mesh, scene.motion
+    if lubricant.rheology != "bingham" or motion.kind != "stop" or mesh.ny != 1:
+        return None
+    if mesh.x_min is None or mesh.x_max is None or mesh.x_min != -mesh.x_max:
+        return None
+    if motion.spring_stiffness != 0.0 or motion.vibration != "none":
+        return None
+    h_stop = float(bingham_squeeze_stop_film(scene.operating.force, scene.geometry.length, scene.geometry.radius,
+                                             mesh.x_max, lubricant.yield_stress))
+    return h_stop if FULL_FILM_RATIO * scene.roughness.sigma <= h_stop < film_at_stop else None
+
+
+def film_at_stop(ds) -> float:
+    """Minimum film (m) of a stop at the instant the block came to rest."""
+    return float(np.interp(_rest_from(ds), ds["time"].values, ds["min_film_thickness"].values))
+
+
+def grease_stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
+    """(label, Dataset) per lubricant of one contact stopped from sliding: the minimum film
+    thickness (um, log) with the RMS roughness sigma dotted and each Bingham grease's
+    ``closed_form_stop_film`` dashed in its colour where the closed form describes the run;
+    the contact resistance (log) with the open threshold dashed, 2 x the resistance at rest
+    dotted and the reconnect time a dot (``_stop_curves``); against the time after the stop
+    (log). Each legend entry says whether and when its case reconnects. Resistances above
+    ``RESISTANCE_AXIS_TOP`` x the open threshold run along the top edge (as in shock_figure)."""
+    fig = Figure(figsize=(7.0, 8.0), layout="constrained")
+    film_ax, resistance_ax = fig.subplots(2, 1, sharex=True)
+    threshold = float(cases[0][1]["open_resistance"])
+    edge = RESISTANCE_AXIS_TOP * threshold
+    _stop_curves([(f"{label}: {_reconnect_text(ds)}", ds) for label, ds in cases], resistance_ax, film_ax, edge)
+    scenes = [load_scene(yaml.safe_load(ds.attrs["scene"])) for _, ds in cases]
+    for i, ((_, ds), scene) in enumerate(zip(cases, scenes)):
+        h_stop = closed_form_stop_film(scene, film_at_stop(ds))
+        if h_stop is not None:
+            film_ax.axhline(h_stop * 1e6, color=f"C{i}", ls="--", lw=1.0,
+                            label=f"yield stress {scene.lubricant.yield_stress:g} Pa alone holds the load: "
+                                  f"{h_stop * 1e6:.3g} \u00b5m")
+    sigma = scenes[0].roughness.sigma
+    film_ax.axhline(sigma * 1e6, color="grey", ls=":", label=f"RMS roughness \u03c3 = {sigma * 1e6:g} \u00b5m")
+    film_ax.set_yscale("log")
+    # plain numbers (0.5, 2, 3 rather than 5 x 10^-1 ...), between decades only at 2, 3 and 5 (room)
+    film_ax.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+    film_ax.yaxis.set_minor_formatter(FuncFormatter(
+        lambda value, _: f"{value:g}" if round(value / 10.0 ** math.floor(math.log10(value))) in (2, 3, 5) else ""))
+    film_ax.legend(fontsize=7, loc="upper right")
+    resistance_ax.axhline(threshold, color="red", ls="--", label=f"open threshold {threshold:g} \u03a9")
+    resistance_ax.set_ylim(top=edge)
+    resistance_ax.set_xlabel("time after the stop (s)")
+    fig.legend(*resistance_ax.get_legend_handles_labels(), fontsize=7, loc="outside lower center")
+    fig.suptitle(wrapped(title) + "\n" + wrapped(
+        f"dashed (film): the film at which the grease's yield stress alone carries the load (closed form for a rigid "
+        f"smooth cylinder), drawn where it lies above {FULL_FILM_RATIO:g}\u03c3 and below the film at the stop; "
+        f"dotted (resistance): 2 \u00d7 resistance at rest, dots: reconnect time; resistances above {edge:g} "
+        f"\u03a9 on the top edge"), fontsize=9)
+    return fig
+
+
+def _reconnect_text(ds) -> str:
+    """Whether and when a stop reconnects (reconnect_time finite, 0 or inf), in words; a
+    case that never does says whether it stayed open (above the open threshold) throughout."""
+    if not int(ds["converged"]):
+        return "did not converge"
+    recon = float(ds["reconnect_time"])
+    if recon == 0.0:
+        return "reconnected before the block stopped"
+    if math.isfinite(recon):
+        return f"reconnects {_duration_text(recon)} after the stop"
+    rest, t = _rest_from(ds), ds["time"].values
+    threshold = float(ds["open_resistance"])
+    opened = bool(np.all(ds["contact_resistance"].values[t >= rest] > threshold))
+    return (f"not reconnected {_duration_text(t[-1] - rest)} after the stop"
+            + (f", open (above {threshold:g} \u03a9) throughout" if opened else ""))
+
+
+def _duration_text(seconds: float) -> str:
+    """A time in words: 3 significant digits, in ms below 1 s."""
+    return f"{seconds * 1e3:.3g} ms" if seconds < 1.0 else f"{seconds:.3g} s"
