@@ -51,6 +51,14 @@ CASES = {
     "table1_tight_stop": (True, {**QUICK, "mesh.nx": 31, "operating.speed": 1.0, "motion.kind": "stop",
                                  "motion.tolerance": 1e-5, "motion.duration": 0.01},
                           "converges since a line contact's step is one Newton (the nested solve failed at 7.3 ms), 2.9-3.3 s"),
+    # found this session (issue 28): a sliding contact on its spring under random base vibration.
+    # Sliding at 0.1 m/s, or at 5 N, or under a 100 Hz sine, it runs; at rest it runs (12 events)
+    "sliding_random_vibration": (True, {**QUICK, "operating.speed": 1.0, "operating.force": 0.5, "motion.kind": "steady",
+                                        "motion.duration": 0.005, "motion.mass": 1e-3, "motion.spring_stiffness": 1000.0,
+                                        "motion.vibration": "random", "motion.vibration_acceleration": 100.0,
+                                        "motion.vibration_frequency": 50.0, "motion.vibration_frequency_end": 500.0},
+                                 "the first step fails (t = 6e-11 s: the Newton's line search finds no descent), "
+                                 "at 100 to 700 m/s^2 RMS, in under 1 s"),
 }
 
 
@@ -140,9 +148,12 @@ def test_hard_case_fails_cheaply_saying_where_and_why(case, outcomes):
     assert where, notes
     failed_at, step = float(where.group(1)), float(where.group(2))
     times = ds["time"].values
-    # the series up to the last accepted step is kept, and the failed step comes right after it
-    assert times.size >= 2 and times[0] == 0.0 and times[-1] == pytest.approx(failed_at - step, rel=1e-5)
+    # the series up to the last accepted step is kept (the start at least), and the failed step
+    # comes right after it
+    assert times.size >= 1 and times[0] == 0.0 and times[-1] == pytest.approx(failed_at - step, rel=1e-5, abs=1e-20)
     for name in ("min_film_thickness", "fluid_force", "contact_force"):
         assert np.all(np.isfinite(ds[name].values)), name
     assert not np.any(np.isnan(ds["contact_resistance"].values))
-    assert "one Newton" in where.group(3) and "nested coupled solve" in where.group(3)
+    # both solvers named, or the one Newton named as the only solver (mass, spring, grease)
+    assert "one Newton" in where.group(3)
+    assert "nested coupled solve" in where.group(3) or "the only solver" in where.group(3)

@@ -145,6 +145,9 @@ def step_solve(model: Model, initial: WarmStart):
         return coupled_solve(model, initial)
     state, diag = monolithic_solve(model, initial, continuation=False)
     if model.load is not None or needs_newton(model):  # the nested solve has no F(z), nor a grease
+        if not diag.converged:
+            diag = dataclasses.replace(diag, failure=f"one Newton (the only solver of a contact with mass or "
+                                                     f"spring, or of a grease): {diag.failure}")
         return state, diag
     start = initial
     if diag.converged:
