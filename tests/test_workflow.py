@@ -92,10 +92,10 @@ SURFACES = {"surfaces_psd": 1}
 # 2 stop curves (Table 1, mu = 0.3), the same 2 cases as the reconnect chart, 2 temperatures
 # of the datasheet oil, 1 vibration, 2 shocks, the accuracy ladders' 4 more (meshes 21 and
 # 41, tolerances 3e-3 and 1e-3; 31 nodes at 1e-2 is the stop figure's case) with their table,
-# and 2 greases
-TRANSIENT = {"transient_case": 13, "transient_figure": 6, "transient_accuracy": 1}
+# and 2 greases, which are also the yield-stress chart's 2 cases
+TRANSIENT = {"transient_case": 13, "transient_figure": 7, "transient_accuracy": 1}
 TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_temperature", "transient_vibration",
-                     "transient_shock", "transient_accuracy", "transient_grease"]
+                     "transient_shock", "transient_accuracy", "transient_grease", "transient_yield_stress"]
 
 
 # --- plans and lint (no solving) ---------------------------------------------------------------
@@ -126,8 +126,10 @@ def test_default_grids(fresh):
     # transient: 5 stop curves + 7 viscosities x 3 forces (3 of them stop curves: Table 1,
     # mu = 1 Pa s, F = 2 N) + 6 temperatures x 2 forces (the datasheet oil) + 1 vibration +
     # 3 shocks + the accuracy ladders' meshes 31, 71, 101 and tolerances 2e-3, 5e-4 (51 x 51
-    # at 1e-3 is the stop figure's Table 1 case) + the oil and 3 greases at 0.5 N
-    transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 5 + 4, "transient_figure": 6, "transient_accuracy": 1}
+    # at 1e-3 is the stop figure's Table 1 case) + the oil and 3 greases at 0.5 N + 5 yield
+    # stresses x 3 forces (3 of them the grease figure's)
+    transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 5 + 4 + 15 - 3, "transient_figure": 7,
+                 "transient_accuracy": 1}
     assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}

@@ -108,13 +108,15 @@ def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str,
         ok = np.array([int(p["ds"]["converged"]) == 1 for p in line])
         color = f"C{i}"
         drawn = np.isfinite(y) & (y > 0) & ok
-        # series that coincide stay visible: each its own marker, the later ones smaller and on top
-        ax.plot(x[drawn], y[drawn], "-", marker=SERIES_MARKERS[i % len(SERIES_MARKERS)], markersize=max(9 - 2 * i, 3),
-                  color=color, label=line[0]["label"], zorder=2 + i)
+        # series that coincide stay visible: each its own marker, the later ones smaller and on
+        # top (the edge triangles too: several series may miss the run at one x)
+        size = max(9 - 2 * i, 3)
+        ax.plot(x[drawn], y[drawn], "-", marker=SERIES_MARKERS[i % len(SERIES_MARKERS)], markersize=size,
+                color=color, label=line[0]["label"], zorder=2 + i)
         never = ~np.isfinite(y) & ok
-        ax.plot(x[never], np.full(never.sum(), top), "^", color=color)
+        ax.plot(x[never], np.full(never.sum(), top), "^", color=color, markersize=size, zorder=2 + i)
         already = (y == 0) & ok
-        ax.plot(x[already], np.full(already.sum(), bottom), "v", color=color)
+        ax.plot(x[already], np.full(already.sum(), bottom), "v", color=color, markersize=size, zorder=2 + i)
         ax.plot(x[~ok], np.where(np.isfinite(y[~ok]), y[~ok], top), "x", color="red", ms=9)
     ax.set_xscale("log" if log_x else "linear")
     ax.set_yscale("log")

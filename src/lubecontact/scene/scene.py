@@ -419,7 +419,7 @@ class Lubricant(_Section):
         "newtonian", _Choice(("newtonian", "bingham", "herschel_bulkley")),
         "flow law of the Reynolds equation: newtonian, or a yield-stress grease (solved by one Newton)",
     )
-    yield_stress: float = _field(0.0, _nonnegative("Pa"), "yield stress tau_y of bingham / herschel_bulkley")
+    yield_stress: float = _field(0.0, _nonnegative("Pa"), "yield stress tau_y of a Bingham or Herschel-Bulkley grease")
     flow_index: float = _field(1.0, _positive("1"), "herschel_bulkley flow index n (viscosity is then K in Pa s^n)")
     # ASTM D1092 measures a grease's apparent viscosity from 25 to 100 000 P at 0.1 1/s: the
     # default is the top of that range, 1e4 Pa s.
