@@ -318,6 +318,9 @@ def transient_accuracy_block(table_file: Path | None = None, log=print) -> str:
     errors, runs = table["mesh_error"].values, table["mesh_run_time"].values
     members = ", ".join(f"{seconds(t)} on {n:g}² ({num(100 * e)} % low, {num(r)} s)" for n, t, e, r in zip(nodes, times, errors, runs))
     tolerances = table["tolerance"].values
+    if default not in tolerances:
+        raise RuntimeError(f"the tolerance ladder {list(tolerances)} lacks the default motion.tolerance {default:g}: "
+                           "its error is what the block quotes")
     tol_error = float(table["tolerance_error"].values[list(tolerances).index(default)])
     within = cheapest_within(table, "mesh", 0.05)
     five = (f"The cheapest mesh within 5 % is {within[0]:g}² ({num(within[1])} s)." if within

@@ -318,15 +318,18 @@ def accuracy_table(study: xr.Dataset) -> xr.Dataset:
     return out
 
 
+def cheapest_index(errors: np.ndarray, times: np.ndarray, target: float) -> int | None:
+    """Index of the fastest member (least ``times``) whose error is finite and <= target,
+    or None."""
+    good = np.flatnonzero(np.isfinite(errors) & (errors <= target))
+    return None if good.size == 0 else int(good[np.argmin(times[good])])
+
+
 def cheapest(table: xr.Dataset, quantity: str, speed_index: int, target: float) -> tuple[int, float] | None:
     """(nodes a side, solve time s) of the fastest mesh whose error is <= target, or None."""
-    error = table[f"{quantity}_error"].values[speed_index]
     times = table["solve_time"].values[speed_index]
-    good = np.flatnonzero(np.isfinite(error) & (error <= target))
-    if good.size == 0:
-        return None
-    best = good[np.argmin(times[good])]
-    return int(table["mesh"].values[best]), float(times[best])
+    best = cheapest_index(table[f"{quantity}_error"].values[speed_index], times, target)
+    return None if best is None else (int(table["mesh"].values[best]), float(times[best]))
 
 
 def percent(x: float) -> str:

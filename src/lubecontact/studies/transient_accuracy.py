@@ -24,7 +24,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from lubecontact.studies.accuracy import extrapolate, percent
+from lubecontact.studies.accuracy import cheapest_index, extrapolate, percent
 
 # what each ladder varies: its coordinate's long name and units, and the spacing its
 # Richardson extrapolation uses
@@ -102,12 +102,9 @@ def _ladder_scalars(out: xr.Dataset, part: str, ext, error: np.ndarray) -> None:
 def cheapest_within(table: xr.Dataset, part: str, target: float) -> tuple[float, float] | None:
     """(member, wall time) of the cheapest ladder member within ``target`` relative error,
     or None when no member is."""
-    error, run_time = table[f"{part}_error"].values, table[f"{part}_run_time"].values
-    ok = np.flatnonzero(error <= target)
-    if ok.size == 0:
-        return None
-    best = ok[np.argmin(run_time[ok])]
-    return float(table[part].values[best]), float(run_time[best])
+    run_time = table[f"{part}_run_time"].values
+    best = cheapest_index(table[f"{part}_error"].values, run_time, target)
+    return None if best is None else (float(table[part].values[best]), float(run_time[best]))
 
 
 def markdown(table: xr.Dataset, targets: Sequence[float] = (0.05, 0.01)) -> str:
