@@ -321,6 +321,22 @@ def test_a_small_2d_mesh_steps_by_the_nested_solve_only(monkeypatch):
     assert series["converged"].item() == 1, series.attrs["notes"]
 
 
+def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch):
+    """model/coupling.STEP_STALL_ITERATIONS: a time step's deformation iteration that has not
+    halved its change in that many iterations fails, naming the stall, so the integrator
+    retries it shorter; a steady solve, which has no shorter step, keeps iterating. With the
+    limit at one iteration every step that does not halve its change at once stalls."""
+    from lubecontact.model import coupling
+
+    monkeypatch.setattr(coupling, "STEP_STALL_ITERATIONS", 1)
+    overrides = {"mesh.nx": 15, "mesh.ny": 11, "motion.kind": "stop", "motion.duration": 2e-3}
+    steady = lc.solve(lc.load_scene(TABLE1, overrides))
+    assert steady["converged"].item() == 1
+    series = lc.transient(lc.load_scene(TABLE1, overrides), progress=False)
+    assert series["rejected_steps"].item() > 0
+    assert series["converged"].item() == 0 and "deformation iteration stalled" in series.attrs["notes"]
+
+
 def test_a_steady_start_that_fails_says_why():
     series = lc.transient(lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop",
                                                   "solver.max_iterations": 1}), progress=False)
