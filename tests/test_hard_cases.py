@@ -51,6 +51,14 @@ CASES = {
     "table1_tight_stop": (True, {**QUICK, "mesh.nx": 31, "operating.speed": 1.0, "motion.kind": "stop",
                                  "motion.tolerance": 1e-5, "motion.duration": 0.01},
                           "converges since a line contact's step is one Newton (the nested solve failed at 7.3 ms), 2.9-3.3 s"),
+    # found while changing the force balance (issue 27): the same stop fails on 25, 29 and 33
+    # nodes (at 6.6, 8.6, 7.9 ms), and on 31 nodes too once the nested solve's answers moved
+    # within its tolerance (then the minimum film crept to h = 0, the frozen content's kink,
+    # in steps of 1e-16 s): that 31 nodes passes is luck
+    "tight_stop_29_nodes": (True, {**QUICK, "mesh.nx": 29, "operating.speed": 1.0, "motion.kind": "stop",
+                                   "motion.tolerance": 1e-5, "motion.duration": 0.01},
+                            "a step fails at t = 8.56 ms with dt = 9e-16 s (the Newton stalls at a scaled residual "
+                            "of 2e-4, the nested solve too), 7 s"),
     # found this session (issue 28): a sliding contact on its spring under random base vibration.
     # Sliding at 0.1 m/s, or at 5 N, or under a 100 Hz sine, it runs; at rest it runs (12 events)
     "sliding_random_vibration": (True, {**QUICK, "operating.speed": 1.0, "operating.force": 0.5, "motion.kind": "steady",
