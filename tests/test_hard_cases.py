@@ -165,3 +165,5 @@ def test_hard_case_fails_cheaply_saying_where_and_why(case, outcomes):
     # both solvers named, or the one Newton named as the only solver (mass, spring, grease)
     assert "one Newton" in where.group(3)
     assert "nested coupled solve" in where.group(3) or "the only solver" in where.group(3)
+    if case == "tight_stop_29_nodes":  # stopped where a node's film reaches h = 0, and says so
+        assert re.search(r"1 node\(s\) of the last accepted film lie within \S+ m of h = 0", notes), notes

@@ -190,6 +190,24 @@ class TimeIntegrator:
     def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
         return fluid_film(model, film)[0]
 
+    def kink_note(self, level: Level) -> str:
+        """Why a run that stops may have stopped where it did: nodes of the last accepted film
+        within the error weight's floor (motion.tolerance x sigma) of h = 0, below which the
+        film content is frozen (model/fluid_film.py). The film of such a node jumps as it
+        crosses, so the error estimate of a step across stays large however short the step
+        (measured on the 29-node Table 1 line stop at motion.tolerance 1e-5: 128-511 at
+        steps from 1.6e-9 to 1.5e-12 s; bench/EXPERIMENTS.md, eleventh session). "" without asperity contact or such nodes."""
+        if self.contact is None:
+            return ""
+        film = np.abs(level.state.film)
+        near = film <= self.tolerance * self.floor
+        if not near.any():
+            return ""
+        return (f"; {int(near.sum())} node(s) of the last accepted film lie within {self.tolerance * self.floor:.2g} m "
+                f"of h = 0 (closest {float(film.min()):.2g} m), where the film content freezes (docs/physics.md "
+                f"section 11): a node's film jumps as it crosses, which no shorter step resolves, the likely "
+                f"reason the run stopped here")
+
     def start(self) -> Level:
         """The steady state at t = 0 (the motion's initial speed)."""
         model = self.steady_model
@@ -283,7 +301,7 @@ class TimeIntegrator:
                         failed += 1
                         if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW:
                             failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
-                                       f"({failed} attempt(s) in a row): {outcome}")
+                                       f"({failed} attempt(s) in a row): {outcome}{self.kink_note(levels[-1])}")
                             break
                         self.rejected += 1
                         dt = 0.25 * (t_new - t)
