@@ -105,9 +105,10 @@ NEWTON_STALL_ITERATIONS = 3
 #   101 x 101   118.0 104.5  70.3 216.0 153.5
 # (30 and 100 run two at a time). Without a limit each mesh has two steps that do not
 # converge in solver.max_iterations (200), but on 101 x 101 others converge after 51 to 106
-# iterations (71 x 71: at most 30): a limit below ~50 cuts them, and their retries take a longer path (99 steps
-# and 30 rejected against 76 and 19). The reconnect time moves within the time tolerance:
-# 12.193 ms on 71 x 71 at every limit, 12.709 / 12.744 / 12.799 ms on 101 x 101 (none, 50, 20).
+# iterations (71 x 71: at most 30): a limit below ~50 cuts them, and their retries take a
+# longer path (99 steps and 30 rejected against 76 and 19). The reconnect time moves within
+# the time tolerance: 12.193 ms on 71 x 71 at every limit, 12.709 / 12.744 / 12.799 ms on
+# 101 x 101 (none, 50, 20).
 STEP_STALL_ITERATIONS = 50
 
 

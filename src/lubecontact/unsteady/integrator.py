@@ -196,14 +196,15 @@ class TimeIntegrator:
         film content is frozen (model/fluid_film.py). The film of such a node jumps as it
         crosses, so the error estimate of a step across stays large however short the step
         (measured on the 29-node Table 1 line stop at motion.tolerance 1e-5: 128-511 at
-        steps from 1.6e-9 to 1.5e-12 s; bench/EXPERIMENTS.md, eleventh session). "" without asperity contact or such nodes."""
+        steps from 1.6e-9 to 1.5e-12 s; bench/EXPERIMENTS.md, eleventh session). "" without
+        asperity contact or such nodes."""
         if self.contact is None:
             return ""
-        film = np.abs(level.state.film)
-        near = film <= self.tolerance * self.floor
+        film, reach = np.abs(level.state.film), self.tolerance * self.floor
+        near = film <= reach
         if not near.any():
             return ""
-        return (f"; {int(near.sum())} node(s) of the last accepted film lie within {self.tolerance * self.floor:.2g} m "
+        return (f"; {int(near.sum())} node(s) of the last accepted film lie within {reach:.2g} m "
                 f"of h = 0 (closest {float(film.min()):.2g} m), where the film content freezes (docs/physics.md "
                 f"section 11): a node's film jumps as it crosses, which no shorter step resolves, the likely "
                 f"reason the run stopped here")
