@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import lubecontact as lc
+from lubecontact.model import coupling
 from lubecontact.unsteady.integrator import bdf_coefficients, error_fraction
 from lubecontact.unsteady.motion import SpeedHistory
 from lubecontact.unsteady.series import cycle_peaks, reconnect_time
@@ -326,8 +327,6 @@ def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch
     halved its change in that many iterations fails, naming the stall, so the integrator
     retries it shorter; a steady solve, which has no shorter step, keeps iterating. With the
     limit at one iteration every step that does not halve its change at once stalls."""
-    from lubecontact.model import coupling
-
     monkeypatch.setattr(coupling, "STEP_STALL_ITERATIONS", 1)
     overrides = {"mesh.nx": 15, "mesh.ny": 11, "motion.kind": "stop", "motion.duration": 2e-3}
     steady = lc.solve(lc.load_scene(TABLE1, overrides))
