@@ -296,7 +296,7 @@ def transient_accuracy_block(table_file: Path | None = None, log=print) -> str:
     """README.md's paragraph on what a reconnect time's accuracy costs: the ladders of
     config/transient.yaml's figure ``accuracy`` (studies/transient_accuracy.py), from the
     workflow's table (``table_file``, its results/data/transient_accuracy.nc) or run here,
-    case by case (minutes: the 71 x 71 and 101 x 101 runs)."""
+    case by case (minutes: the finest mesh's run)."""
     spec = transient_spec(ROOT / "config" / "transient.yaml")
     spec["base"] = str(ROOT / spec["base"])
     default = load_scene(spec["base"], spec.get("set", {})).motion.tolerance  # the mesh ladder's
@@ -314,17 +314,18 @@ def transient_accuracy_block(table_file: Path | None = None, log=print) -> str:
         when = f"from the workflow's {table_file.name} of {written:%Y-%m-%d}, its runs two at a time on {os.cpu_count()} CPUs"
     if table.attrs.get("notes"):
         raise RuntimeError(f"the transient accuracy ladders are incomplete: {table.attrs['notes']}")
-    nodes, times = table["mesh"].values, table["mesh_reconnect_time"].values
+    nodes, across, times = table["mesh"].values, table["mesh_ny"].values, table["mesh_reconnect_time"].values
     errors, runs = table["mesh_error"].values, table["mesh_run_time"].values
-    members = ", ".join(f"{seconds(t)} on {n:g}² ({num(100 * e)} % low, {num(r)} s)" for n, t, e, r in zip(nodes, times, errors, runs))
+    shapes = [f"{n:g} \u00d7 {m:g}" for n, m in zip(nodes, across)]
+    members = ", ".join(f"{seconds(t)} on {s} ({num(100 * e)} % low, {num(r)} s)" for s, t, e, r in zip(shapes, times, errors, runs))
     tolerances = table["tolerance"].values
     if default not in tolerances:
         raise RuntimeError(f"the tolerance ladder {list(tolerances)} lacks the default motion.tolerance {default:g}: "
                            "its error is what the block quotes")
     tol_error = float(table["tolerance_error"].values[list(tolerances).index(default)])
     within = cheapest_within(table, "mesh", 0.05)
-    five = (f"The cheapest mesh within 5 % is {within[0]:g}² ({num(within[1])} s)." if within
-            else f"No mesh of the ladder is within 5 %: the finest, {nodes.max():g}², is {num(100 * errors[-1])} % low.")
+    five = (f"The cheapest mesh within 5 % is {shapes[list(nodes).index(within[0])]} ({num(within[1])} s)." if within
+            else f"No mesh of the ladder is within 5 %: the finest, {shapes[-1]}, is {num(100 * errors[-1])} % low.")
     return (f"The Table 1 stop's reconnect time (`results/data/transient_accuracy.md`, {when}; wall time of each run): "
             f"{members}; extrapolated {seconds(float(table['mesh_extrapolated']))} (observed order "
             f"{float(table['mesh_order']):.2g}). {five} On the default 51² mesh, the time-step tolerance's own error at "

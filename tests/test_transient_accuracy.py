@@ -43,11 +43,20 @@ def test_the_ladder_plans_square_meshes_then_tolerances_on_one_mesh():
     line = study.ladder_cases("accuracy", {"line": True, "meshes": [21, 31, 41], "set": {"lubricant.viscosity": 1.0}})
     assert line[0]["overrides"] == {"lubricant.viscosity": 1.0, "mesh.nx": 21, "mesh.ny": 1}
     assert line[0]["label"] == "21 \u00d7 1 nodes"
+    # refined along the sliding direction only (the reconnect time's mesh error is along x),
+    # the tolerance ladder still on its square mesh
+    along_x, _ = ladder(meshes=(31, 51, 101), mesh_ny=21)
+    assert along_x[0]["overrides"] == {"mesh.nx": 31, "mesh.ny": 21} and along_x[0]["label"] == "31 \u00d7 21 nodes"
+    assert along_x[-1]["overrides"] == {"mesh.nx": 51, "mesh.ny": 51, "motion.tolerance": 2.5e-4}
+    table = ladder_table(*ladder(meshes=(31, 51, 101), mesh_ny=21))
+    assert list(table["mesh_ny"].values) == [21, 21, 21] and list(table["tolerance_ny"].values) == [51, 51, 51]
+    assert "| 31 | 21 |" in markdown(table)
 
 
 @pytest.mark.parametrize("bad, words", [
     ({"meshes": [31, 51, 51]}, "three different meshes"),
     ({"meshes": [31, 51, 71.5]}, "whole numbers"),
+    ({"meshes": [31, 51, 71], "mesh_ny": 2}, "mesh_ny must be whole numbers"),
     ({"meshes": [31, 51, 71], "tolerances": {"mesh": 51, "values": [1e-3, 0.0, 1e-4]}}, "positive"),
 ])
 def test_a_bad_ladder_is_refused_naming_the_figure(bad, words):
@@ -57,7 +66,7 @@ def test_a_bad_ladder_is_refused_naming_the_figure(bad, words):
 
 def test_the_shipped_ladder_shares_its_default_case_with_the_stop_figure():
     cases = study.figure_cases(study.study_spec("config/transient.yaml", None))
-    default = next(c for c in cases["accuracy"] if c["part"] == "mesh" and c["value"] == 51)
+    default = next(c for c in cases["accuracy"] if c["part"] == "tolerance" and c["value"] == 1e-3)
     assert default["id"] == cases["stop"][0]["id"]
 
 

@@ -45,17 +45,21 @@ def ladder_table(cases: Sequence[Mapping], data: Sequence[xr.Dataset]) -> xr.Dat
     """The ladders' table from the planned cases (transient_cases.ladder_cases: part, value)
     and their transient Datasets, in the same order. Per part (``mesh``, ``tolerance``):
     along its coordinate the reconnect time, its relative error against the extrapolation,
-    the run's wall time, steps, rejected steps and convergence; scalars the extrapolated
+    the nodes along the cylinder axis of the member's mesh, the run's wall time, steps,
+    rejected steps and convergence; scalars the extrapolated
     reconnect time, observed order, GCI and whether the ladder is in its asymptotic range.
     ``notes`` says why a ladder has no extrapolation."""
     out, notes = xr.Dataset(), []
     for part, (long_name, units) in PARTS.items():
-        members = sorted(((c["value"], ds) for c, ds in zip(cases, data) if c["part"] == part), key=lambda m: m[0])
-        if not members:
+        planned = sorted(((c["value"], ds, c) for c, ds in zip(cases, data) if c["part"] == part), key=lambda m: m[0])
+        if not planned:
             continue
+        members = [(v, ds) for v, ds, _ in planned]
         values = np.array([v for v, _ in members], dtype=float)
         times = np.array([float(ds["reconnect_time"]) for _, ds in members])
         out.coords[part] = xr.DataArray(values, dims=part, attrs={"long_name": long_name, "units": units})
+        out[f"{part}_ny"] = (part, np.array([c["overrides"]["mesh.ny"] for _, _, c in planned]),
+                             {"long_name": "nodes along the cylinder axis (1: line contact)", "units": "1"})
         _member_variables(out, part, members, times)
         reached = np.isfinite(times) & (times > 0.0) & (out[f"{part}_converged"].values == 1)
         if reached.all():
@@ -114,10 +118,11 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.05, 0.01)) -> str:
         if part not in table.coords:
             continue
         name = "mesh (nodes along the sliding direction)" if part == "mesh" else "motion.tolerance"
-        lines += [f"## {part} ladder", "", f"| {name} | reconnect time (ms) | error | steps (rejected) | run (s) |",
-                  "|---|---|---|---|---|"]
+        lines += [f"## {part} ladder", "", f"| {name} | nodes along the cylinder axis | reconnect time (ms) | error | "
+                  "steps (rejected) | run (s) |", "|---|---|---|---|---|---|"]
         for i, value in enumerate(table[part].values):
-            lines.append(f"| {value:g} | {table[f'{part}_reconnect_time'].values[i] * 1e3:.4g} | "
+            lines.append(f"| {value:g} | {table[f'{part}_ny'].values[i]} | "
+                         f"{table[f'{part}_reconnect_time'].values[i] * 1e3:.4g} | "
                          f"{percent(table[f'{part}_error'].values[i])} | {table[f'{part}_steps'].values[i]} "
                          f"({table[f'{part}_rejected_steps'].values[i]}) | {table[f'{part}_run_time'].values[i]:.3g} |")
         ext = float(table[f"{part}_extrapolated"])

@@ -78,33 +78,38 @@ def is_ladder(figure: Mapping) -> bool:
 
 def ladder_cases(name: str, ladder: Mapping) -> list[dict]:
     """The cases of a convergence ladder (studies/transient_accuracy.py): the figure's scene
-    (its optional set:) on every mesh of ``meshes`` (n x n nodes, n x 1 with ``line: true``),
-    part "mesh", then on the mesh ``tolerances.mesh`` at every motion.tolerance of
-    ``tolerances.values``, part "tolerance". Each ladder needs three different values at
-    least (Richardson extrapolation with an observed order); ValueError names the figure."""
+    (its optional set:) on every mesh of ``meshes``, nodes along the sliding direction, each
+    with ``mesh_ny`` nodes along the cylinder axis (n x mesh_ny; n x n without it, n x 1 with
+    ``line: true``), part "mesh", then on the square mesh ``tolerances.mesh`` at every
+    motion.tolerance of ``tolerances.values``, part "tolerance". Each ladder needs three
+    different values at least (Richardson extrapolation with an observed order); ValueError
+    names the figure."""
     shared = dict(ladder.get("set") or {})
     line = bool(ladder.get("line", False))
 
-    def nodes(n) -> dict:
+    def whole(n, what: str) -> int:
         if int(n) != n or n < 3:
-            raise ValueError(f"transient figure {name!r}: mesh nodes must be whole numbers >= 3, got {n!r}")
-        return {"mesh.nx": int(n), "mesh.ny": 1 if line else int(n)}
+            raise ValueError(f"transient figure {name!r}: {what} must be whole numbers >= 3, got {n!r}")
+        return int(n)
 
-    def shape(n) -> str:
-        return f"{n} \u00d7 {1 if line else n} nodes"
+    def nodes(n, across=None) -> dict:
+        return {"mesh.nx": whole(n, "mesh nodes"), "mesh.ny": 1 if line else whole(across or n, "mesh_ny")}
+
+    def shape(overrides: dict) -> str:
+        return f"{overrides['mesh.nx']} \u00d7 {overrides['mesh.ny']} nodes"
 
     meshes = list(ladder["meshes"])
     if len(set(meshes)) < 3:
         raise ValueError(f"transient figure {name!r}: 'meshes' needs three different meshes at least, got {meshes}")
-    cases = [{"label": shape(n), "part": "mesh", "value": int(n), "overrides": {**shared, **nodes(n)}}
-             for n in sorted(meshes)]
+    cases = [{"label": shape(nodes(n, ladder.get("mesh_ny"))), "part": "mesh", "value": int(n),
+              "overrides": {**shared, **nodes(n, ladder.get("mesh_ny"))}} for n in sorted(meshes)]
     tolerances = ladder.get("tolerances")
     if tolerances is not None:
         values = sorted((float(t) for t in tolerances["values"]), reverse=True)
         if len(set(values)) < 3 or min(values) <= 0.0:
             raise ValueError(f"transient figure {name!r}: 'tolerances.values' needs three different positive "
                              f"tolerances at least, got {tolerances['values']}")
-        cases += [{"label": f"tolerance {t:g}, {shape(tolerances['mesh'])}", "part": "tolerance", "value": t,
+        cases += [{"label": f"tolerance {t:g}, {shape(nodes(tolerances['mesh']))}", "part": "tolerance", "value": t,
                    "overrides": {**shared, **nodes(tolerances["mesh"]), "motion.tolerance": t}} for t in values]
     return cases
 
