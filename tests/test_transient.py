@@ -164,12 +164,24 @@ def test_thicker_oil_and_lighter_load_wait_longer():
 
 
 def test_reconnect_time_and_oscillation_metrics_from_series():
+    # R(t) = 100 for t <= 1, then 100 exp(-(t - 1)^2 ln 10) (10 at t = 2, 1e-7 at t = 4):
+    # the crossing of R = 50 is at t = 1 + sqrt(log10 2), which neither a linear nor a
+    # log-linear interpolation of the levels gives
+    def exact(t):
+        return 100.0 * 10.0 ** (-max(t - 1.0, 0.0) ** 2)
+
     t = np.array([0.0, 1.0, 2.0, 3.0, 4.0])
-    r = np.array([100.0, 100.0, 10.0, 1.0, 1.0])
-    assert reconnect_time(t, r, 1.0, 10.0) == pytest.approx(1.0)
-    assert reconnect_time(t, r, 1.0, math.sqrt(1000.0)) == pytest.approx(0.5)  # log-linear
-    assert reconnect_time(t, r, 1.0, 0.5) == math.inf
-    assert math.isnan(reconnect_time(t, r, None, 10.0))
+    r = np.array([exact(ti) for ti in t])
+
+    def dense(step, ti):  # the integrator's dense output, exact here
+        return exact(ti)
+
+    assert reconnect_time(t, r, 1.0, 10.0, dense) == pytest.approx(1.0)
+    assert reconnect_time(t, r, 1.0, 50.0, dense) == pytest.approx(math.sqrt(math.log10(2.0)), rel=1e-8)
+    assert reconnect_time(t, r, 1.0, 50.0, dense) != pytest.approx(math.log10(2.0), rel=1e-3)  # log-linear's
+    assert reconnect_time(t, r, 2.0, 20.0, dense) == 0.0  # below the threshold when the motion stops
+    assert reconnect_time(t, r, 1.0, 1e-9, dense) == math.inf
+    assert math.isnan(reconnect_time(t, r, None, 10.0, dense))
     # the open fraction comes from the located events (tests/test_events.py)
     assert cycle_peaks(t, np.array([0.5, 2.0, 0.5, 3.0, 0.1]), 2.0, 2).tolist() == [2.0, 3.0]
 

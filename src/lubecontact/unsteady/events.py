@@ -124,9 +124,10 @@ def locate_events(times, resistance, threshold: float, min_duration: float, resi
     return Events(threshold, min_duration, kept)
 
 
-def level_events(levels, resistance, threshold: float, min_duration: float) -> Events:
-    """The events of a transient's accepted levels (integrator.Level) above ``threshold``,
-    R between levels from the dense output's film through each instant's electrical path."""
+def dense_resistance(levels):
+    """``resistance_at(step, t)``: R on the dense output of the step ending at
+    levels[step] (integrator.Level), the film of dense_film through that instant's
+    electrical path."""
     times = [level.time for level in levels]
     films = [level.state.film for level in levels]
     orders = [level.order for level in levels]
@@ -136,4 +137,11 @@ def level_events(levels, resistance, threshold: float, min_duration: float) -> E
         film = dense_film(times, films, orders, step, t)
         return electrical_path(model.scene, model.mesh, model.contact, film).contact_resistance
 
-    return locate_events(times, resistance, threshold, min_duration, resistance_at)
+    return resistance_at
+
+
+def level_events(levels, resistance, threshold: float, min_duration: float) -> Events:
+    """The events of a transient's accepted levels (integrator.Level) above ``threshold``,
+    R between levels from the dense output (dense_resistance)."""
+    return locate_events([level.time for level in levels], resistance, threshold, min_duration,
+                         dense_resistance(levels))

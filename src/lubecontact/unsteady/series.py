@@ -14,6 +14,7 @@ from lubecontact.io.version import package_version
 from lubecontact.model.outputs import point_outputs
 from lubecontact.model.validity import assess
 from lubecontact.numerics.reynolds import boundary_flux, interior_nodes
+from lubecontact.unsteady.events import crossing_time
 
 # name: (units, long_name), along ``time``; a quantity that means what it means in a case
 # takes the case's entry (io/case_schema.SCALARS)
@@ -102,25 +103,23 @@ def volume_balance(level) -> float:
     return (outflow + float(np.sum(squeeze[full]))) / scale
 
 
-def reconnect_time(time, resistance, rest_from, threshold) -> float:
-    """First time after ``rest_from`` at which resistance <= threshold (log-linear between
-    levels), minus rest_from; inf if never; NaN without a rest (the motion never stops)."""
+def reconnect_time(time, resistance, rest_from, threshold, resistance_at) -> float:
+    """First time after ``rest_from`` at which resistance <= threshold, minus rest_from; inf
+    if never; NaN without a rest (the motion never stops). Between the last level above and
+    the first below, the crossing is the root on the integrator's dense output, as an event's
+    edge (events.crossing_time; ``resistance_at(step, t)``: events.dense_resistance), not an
+    interpolation of the sampled R."""
     if rest_from is None:
         return math.nan
-    time, resistance = np.asarray(time), np.asarray(resistance)
-    after = time >= rest_from
-    t, r = time[after], resistance[after]
-    below = np.flatnonzero(r <= threshold)
+    time, resistance = np.asarray(time, dtype=float), np.asarray(resistance, dtype=float)
+    after = np.flatnonzero(time >= rest_from)
+    below = after[resistance[after] <= threshold]
     if below.size == 0:
         return math.inf
-    i = int(below[0])
-    if i == 0:
+    step = int(below[0])
+    if step == after[0]:
         return 0.0
-    r0, r1 = r[i - 1], r[i]
-    if not np.isfinite(r0):
-        return float(t[i] - rest_from)
-    fraction = (math.log(r0) - math.log(threshold)) / (math.log(r0) - math.log(r1))
-    return float(t[i - 1] + fraction * (t[i] - t[i - 1]) - rest_from)
+    return crossing_time(time, resistance, threshold, step, resistance_at) - rest_from
 
 
 def cycle_peaks(time, resistance, period, cycles) -> np.ndarray:

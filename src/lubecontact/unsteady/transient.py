@@ -16,7 +16,7 @@ from lubecontact.model.prepare import prepare
 from lubecontact.numerics.blas_threads import one_blas_thread
 from lubecontact.physics.yield_stress_flow import creep_squeeze_rate
 from lubecontact.scene import SceneError
-from lubecontact.unsteady.events import level_events
+from lubecontact.unsteady.events import dense_resistance, level_events
 from lubecontact.unsteady.integrator import TimeIntegrator, scene_at
 from lubecontact.unsteady.motion import SpeedHistory, motion_problems
 from lubecontact.unsteady.series import (
@@ -61,7 +61,8 @@ def tighter_reconnect_time(scene, history, rest: float, progress: bool) -> float
         return math.nan
     resistance = [instant(lv.model, lv.state)["contact_resistance"] for lv in levels]
     times = [lv.time for lv in levels]
-    return reconnect_time(times, resistance, history.rest_from, scene.motion.reconnect_factor * rest)
+    return reconnect_time(times, resistance, history.rest_from, scene.motion.reconnect_factor * rest,
+                          dense_resistance(levels))
 
 
 def integration_error(value: float, tighter: float | None) -> float:
@@ -140,7 +141,8 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     }
     rows = level_rows(levels)
     resistance = np.array([row["contact_resistance"] for row in rows])
-    recon = reconnect_time(series_t, resistance, history.rest_from, scene.motion.reconnect_factor * rest)
+    recon = reconnect_time(series_t, resistance, history.rest_from, scene.motion.reconnect_factor * rest,
+                           dense_resistance(levels))
     if failure and math.isinf(recon):
         recon = math.nan  # the run ended early: "not within duration" is unknown
     scalars["reconnect_time"] = recon
