@@ -207,10 +207,12 @@ def test_a_real_oscillation_reports_its_events_end_to_end(vibration):
         assert np.all(ds["event_peak_resistance"].values > threshold)
         assert ds["event_open_time"].item() == pytest.approx(durations.sum(), rel=1e-12)
         assert ds["longest_event"].item() == durations.max()
-        # open_fraction comes from the same edges: open time = open_fraction x oscillation time
-        assert ds["event_open_time"].item() == pytest.approx(ds["open_fraction"].item() * 0.15, rel=1e-12)
+        # open_fraction comes from the same edges: the open time within the oscillation (0.15 s)
+        # = open_fraction x 0.15 (the last stroke's event outlasts the motion while the film drains)
+        within = np.minimum(starts + durations, 0.15) - np.minimum(starts, 0.15)
+        assert within.sum() == pytest.approx(ds["open_fraction"].item() * 0.15, rel=1e-12)
         # above 2 x rest the contact is open from the first stroke until it reconnects at rest:
-        # the event ends where reconnect_time (log-linear between the levels) says, within a step
+        # the event ends where reconnect_time (on the same dense output) says, within a step
         assert ds["relative_event_count"].item() == 1
         assert ds["relative_threshold"].item() == pytest.approx(2 * ds["rest_resistance"].item(), rel=1e-15)
         j = np.flatnonzero(r > ds["relative_threshold"].item())[0]  # the event starts in [t[j - 1], t[j]]

@@ -10,7 +10,7 @@ from functools import partial
 
 import numpy as np
 
-from lubecontact.model.fluid_film import fluid_faces, fluid_film, fluid_slopes
+from lubecontact.model.fluid_film import fluid_faces, fluid_film, fluid_slopes, squeeze_content
 from lubecontact.model.model import Model, State
 from lubecontact.numerics.cavitation_jfo import solve_jfo
 from lubecontact.numerics.reynolds import solve_reynolds
@@ -30,7 +30,7 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
     if model.contact is not None:
         contact_pressure, contact_slope = model.contact.pressure_and_slope(film)
     fluid_pressure = np.zeros(mesh.shape)
-    h_t = k = reynolds = faces = face_slopes = None
+    h_t = k = reynolds = faces = face_slopes = content = None
     if model.hydrodynamic:
         h_t, k = fluid_film(model, film)
         if scene.effects.cavitation == "jfo":  # mass-conserving cavitation (cavitation_jfo.py)
@@ -39,7 +39,10 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
             solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds",
                                   pressure_guess=pressure_guess)
         faces, face_slopes = fluid_faces(model, film)
-        transient = {} if model.squeeze is None else {"squeeze_rate": model.squeeze.rate(h_t)}  # unsteady/
+        transient = {}
+        if model.squeeze is not None:  # a time step (unsteady/): the cells' content, squeezed
+            content = squeeze_content(model, film)
+            transient = {"squeeze_rate": model.squeeze.rate(content.value)}
         reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse,
                                faces=faces, **transient)
         fluid_pressure = reynolds.pressure
@@ -57,6 +60,7 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
         flow_coefficient=k,
         faces=faces,
         face_slopes=face_slopes,
+        squeeze_content=content,
     )
 
 
@@ -79,7 +83,7 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
         gradient += state.contact_slope * model.mesh.nodal_area
     if state.reynolds is not None:
         face_slopes, gap_slope, coefficient_slope = fluid_slopes(model, state)
-        squeeze = {} if model.squeeze is None else {"squeeze_slope": model.squeeze.coefficient * gap_slope}
+        squeeze = {} if model.squeeze is None else {"squeeze": (model.squeeze.coefficient, state.squeeze_content)}
         if face_slopes is not None:  # rough surfaces: the film on the faces (percolation.py)
             gap_slope, coefficient_slope = None, face_slopes
         gradient += state.reynolds.load_sensitivity(model.mesh, gap_slope, coefficient_slope, model.scene.operating.speed,

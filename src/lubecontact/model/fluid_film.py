@@ -13,6 +13,7 @@ from functools import partial
 import numpy as np
 
 from lubecontact.model.model import Model, State
+from lubecontact.numerics.control_volume import ControlVolumeMean, control_volume_mean
 from lubecontact.physics.flow_factors import (
     expected_gap_and_slope,
     percolating_coefficient_and_slope,
@@ -63,6 +64,25 @@ def yield_stress_law(model: Model) -> YieldStressLaw | None:
     return YieldStressLaw(lubricant.viscosity, lubricant.yield_stress, lubricant.flow_index, lubricant.creep_viscosity)
 
 
+def squeeze_content(model: Model, film: np.ndarray) -> ControlVolumeMean:
+    """The film content each cell holds, for a transient's squeeze term dA dh_T/dt
+    (docs/physics.md section 14): with rough surfaces the cell's mean of the content frozen
+    below FLUID_FILM_FLOOR_SIGMAS (numerics/control_volume.py: a cell empties gradually as
+    its film crosses the floor, not at once when its node does); smooth surfaces, whose
+    content is the film itself, keep the nodal value (lumped: second order without a kink)."""
+    if model.contact is None:
+        h_t, _, slope, _ = fluid_film(model, film, slopes=True)
+        return ControlVolumeMean.lumped(h_t, slope)
+    floor = FLUID_FILM_FLOOR_SIGMAS * model.contact.sigma
+    content = content_law(model)
+
+    def frozen(h):
+        value, slope = content(np.maximum(h, floor))
+        return value, np.where(h > floor, slope, 0.0)
+
+    return control_volume_mean(film, frozen, floor)
+
+
 def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
     """(h_T, k) at the nodes for the Reynolds equation (Eqs. 1-2; content_law and
     coefficient_law, the content frozen below FLUID_FILM_FLOOR_SIGMAS); with ``slopes``
@@ -92,8 +112,9 @@ def fluid_slopes(model: Model, state: State):
     """(face slopes, nodal dh_T/dh, nodal dk/dh) of the film the fluid saw at ``state``, for
     the linearised Reynolds residual (force_gradient, newton.fluid_pressure_response): the
     face slopes (percolation.FaceFilm; None for smooth surfaces) and the nodal slopes of
-    fluid_film where they are used (smooth faces, a transient's squeeze term), else None."""
-    if state.face_slopes is not None and model.squeeze is None:
+    fluid_film where they are used (smooth faces), else None (a transient's squeeze term
+    has its own, State.squeeze_content)."""
+    if state.face_slopes is not None:
         return state.face_slopes, None, None
     _, _, gap_slope, coefficient_slope = fluid_film(model, state.film, slopes=True)
     return state.face_slopes, gap_slope, coefficient_slope

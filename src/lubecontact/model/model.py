@@ -15,6 +15,7 @@ import numpy as np
 
 from lubecontact.model.contact_tables import contact_table
 from lubecontact.numerics.cavitation_jfo import JFOSolution
+from lubecontact.numerics.control_volume import ControlVolumeMean
 from lubecontact.numerics.mesh import Mesh, build_mesh
 from lubecontact.numerics.reynolds import ReynoldsSolution
 from lubecontact.numerics.transfer import coarser_mesh
@@ -131,6 +132,8 @@ class State:
     # (model/fluid_film.fluid_faces), else None
     faces: FaceFilm | None = None
     face_slopes: FaceFilm | None = None
+    # a time step's cells' film content and its slopes (model/fluid_film.squeeze_content), else None
+    squeeze_content: ControlVolumeMean | None = None
 
     @property
     def total_force(self) -> float:

@@ -51,7 +51,7 @@ from scipy.sparse.linalg import LinearOperator, gmres, splu
 from lubecontact.model.auto_effects import decreasing_root, operating_point
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.evaluation import film_scale
-from lubecontact.model.fluid_film import fluid_faces, fluid_film, yield_stress_law
+from lubecontact.model.fluid_film import fluid_faces, fluid_film, squeeze_content, yield_stress_law
 from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.complementarity import fischer_burmeister
 from lubecontact.numerics.reynolds import ReynoldsSolution, interior_nodes, reynolds_system, solve_reynolds
@@ -168,11 +168,14 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         contact_pressure, contact_slope = model.contact.pressure_and_slope(film)
     pressure = np.zeros(mesh.shape)
     r_p = exact = np.zeros(0)
-    unknown = reynolds = h_t = k = faces = face_slopes = slopes = parts = None
+    unknown = reynolds = h_t = k = faces = face_slopes = slopes = parts = content = None
     if model.hydrodynamic:
         h_t, k = fluid_film(model, film)
         faces, face_slopes = fluid_faces(model, film)
-        rate = None if model.squeeze is None else model.squeeze.rate(h_t)
+        rate = None
+        if model.squeeze is not None:  # a time step: the cells' content, squeezed
+            content = squeeze_content(model, film)
+            rate = model.squeeze.rate(content.value)
         system = reynolds_system(mesh, h_t, k, scene.operating.speed, faces, squeeze_rate=rate)
         unknown = system.unknown
         pressure[unknown] = it.pressure[unknown]
@@ -181,7 +184,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         w = system.matrix @ p - system.rhs
         grease = yield_stress_law(model)
         gap_slope = coefficient_slope = None  # nodal dh_T/dh and dk/dh, where a term needs them
-        if face_slopes is None or model.squeeze is not None or grease is not None:
+        if face_slopes is None or grease is not None:
             _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)
         if grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
             grease_flow = yield_stress_outflow(mesh, system, pressure, k, h_t, gap_slope, scene.operating.speed,
@@ -195,8 +198,8 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
             exact = fischer_burmeister(p, w / scale)[0] if smoothing > 0.0 else r_p
         j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, gap_slope,
                                            coefficient_slope)
-        if model.squeeze is not None:  # the cell's squeeze outflow dA c0 h_T (docs/physics.md section 14)
-            squeeze_slope = squeeze_film_jacobian(mesh, unknown, model.squeeze.coefficient * gap_slope)
+        if model.squeeze is not None:  # the cell's squeeze outflow dA c0 c (docs/physics.md section 14)
+            squeeze_slope = squeeze_film_jacobian(mesh, unknown, model.squeeze.coefficient, content)
             j_wh = j_wh + squeeze_slope
             if grease is not None:
                 grease_flow = dataclasses.replace(grease_flow, outflow_film=grease_flow.outflow_film + squeeze_slope)
@@ -214,7 +217,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         z=it.z, delta=it.delta, film=film, contact_pressure=contact_pressure, fluid_pressure=pressure,
         expected_gap=h_t, reynolds=reynolds, contact_force=float(np.sum(contact_pressure * area)),
         fluid_force=float(np.sum(pressure * area)), contact_slope=contact_slope if model.contact is not None else None,
-        flow_coefficient=k, faces=faces, face_slopes=face_slopes,
+        flow_coefficient=k, faces=faces, face_slopes=face_slopes, squeeze_content=content,
     )
     scale_h = film_scale(model)
     r_delta = None if model.deformation is None else it.delta - model.deformation(total)

@@ -53,7 +53,7 @@ def fluid_pressure_response(model, state):
     p = solution.pressure
     factors = None if solution.factor is None else solution.factor.factors
     gx, gy = mesh.dy / mesh.dx, mesh.dx / mesh.dy
-    squeeze_cell = None if squeeze is None else squeeze.coefficient * mesh.nodal_area * gap_slope
+    content = state.squeeze_content  # a time step's cells' content (fluid_film.squeeze_content)
 
     def on_faces(v):
         """dk and dh_T of the x faces and dk of the y faces for the film change v."""
@@ -68,7 +68,7 @@ def fluid_pressure_response(model, state):
         if factors is None:
             return response
         dk_x, dg_x, dk_y = on_faces(v)
-        dr = np.zeros(mesh.shape) if squeeze_cell is None else squeeze_cell * v
+        dr = np.zeros(mesh.shape) if squeeze is None else squeeze.coefficient * mesh.nodal_area * content.apply(v)
         flux = gx * dk_x * (p[:, :-1] - p[:, 1:]) + 0.5 * speed * mesh.dy * dg_x  # Poiseuille + Couette
         dr[:, :-1] += flux
         dr[:, 1:] -= flux

@@ -80,9 +80,9 @@ class ReynoldsSolution:
     # no node is pressurised
     factor: object | None = None
 
-    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed, squeeze_slope=None) -> np.ndarray:
+    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed, squeeze=None) -> np.ndarray:
         """dW/dh_j (N/m) at this solution: module function load_sensitivity."""
-        return load_sensitivity(mesh, self, gap_slope, coefficient_slope, speed, squeeze_slope)
+        return load_sensitivity(mesh, self, gap_slope, coefficient_slope, speed, squeeze)
 
 
 @dataclass(frozen=True)
@@ -346,7 +346,7 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) 
     return float(total)
 
 
-def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeeze_slope=None) -> np.ndarray:
+def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeeze=None) -> np.ndarray:
     """dW/dh_j, N/m (ny, nx): how the fluid load W = sum_i p_i dA_i changes with the film at
     node j, at the solution's active set, by the adjoint method (one more solve with A_FF:
     a back-substitution with the LU factors the solve left, or a few CG steps when it
@@ -360,9 +360,9 @@ def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeez
     dh_T/dh and ``coefficient_slope`` = dk/dh are nodal (ny, nx). The cavitated set moves
     with h too, but where it meets the pressurised set p = 0 and grad p = 0 (Reynolds
     condition), so that motion does not change W to first order.
-    ``squeeze_slope`` (1/s, nodal): d(dh_T/dt)/dh of a transient step (the time
-    discretisation's coefficient times dh_T/dh; reynolds_system's squeeze_rate); the cell term
-    dA_j dh_T,j/dt adds lambda_j dA_j squeeze_slope_j to dr/dh_j.
+    ``squeeze`` (c0 in 1/s, control_volume.ControlVolumeMean of the cells' content): a
+    transient step's squeeze term dA_i dh_T,i/dt with dh_T,i/dt = c0 c_i + history
+    (reynolds_system's squeeze_rate) adds c0 (dc/dh)^T (lambda dA) to lambda^T dr/dh.
     """
     if solution.factor is None:
         return np.zeros(mesh.shape)
@@ -370,8 +370,9 @@ def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeez
     adjoint = np.zeros(mesh.shape)
     adjoint[free] = solution.factor.solve(mesh.nodal_area[free])
     sensitivity = adjoint_sensitivity(mesh, adjoint, solution.pressure, gap_slope, coefficient_slope, speed)
-    if squeeze_slope is not None:
-        sensitivity -= adjoint * mesh.nodal_area * squeeze_slope
+    if squeeze is not None:
+        coefficient, content = squeeze
+        sensitivity -= coefficient * content.transpose(adjoint * mesh.nodal_area)
     return sensitivity
 
 

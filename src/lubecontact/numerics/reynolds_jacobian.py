@@ -78,14 +78,13 @@ def outflow_film_jacobian(mesh, pressure, unknown, speed, face_slopes: FaceFilm 
     return outflow, diagonal
 
 
-def squeeze_film_jacobian(mesh, unknown, rate_slope) -> sp.csr_matrix:
+def squeeze_film_jacobian(mesh, unknown, coefficient: float, content) -> sp.csr_matrix:
     """d w / d h of a transient step's squeeze outflow dA dh_T/dt (reynolds.reynolds_system,
-    docs/physics.md section 14): (number of unknowns, number of nodes), one entry a row,
-    dA d(rate)/dh at the node itself; ``rate_slope`` (ny, nx) is d(dh_T/dt)/dh, 1/s
-    (c0 dh_T/dh for BDF)."""
+    docs/physics.md section 14): (number of unknowns, number of nodes), the unknowns' rows of
+    c0 dA dc/dh, with dh_T/dt = c0 c + history (BDF's c0 in 1/s) and ``content`` the cells'
+    content c (control_volume.ControlVolumeMean: a node's row reaches its neighbours)."""
     rows = np.flatnonzero(unknown.ravel())
-    values = (mesh.nodal_area * rate_slope).ravel()[rows]
-    return sp.csr_matrix((values, (np.arange(rows.size), rows)), shape=(rows.size, unknown.size))
+    return (coefficient * sp.diags(mesh.nodal_area.ravel()) @ content.matrix()).tocsr()[rows]
 
 
 @dataclass(frozen=True)

@@ -22,8 +22,8 @@ BDF's local error is -D_p/c0 h^{(p+1)}; both constants are computed for the actu
 (error_fraction). A step is accepted when that estimate, node by node relative to
 ``tolerance`` times max(|h|, floor) (floor: sigma with roughness, FILM_FLOOR without), has
 a root mean square over the nodes below 1 (the weighted RMS norm of ODE codes such as
-SUNDIALS: a kink in one node's history, where its film crosses the fluid's floor at h = 0,
-does not force the whole contact to tiny steps), and the
+SUNDIALS: a sharp change in one node's history does not force the whole contact to tiny
+steps), and the
 next step is scaled by 0.9 E^{-1/(p+1)} within [SHRINK, GROWTH]: steps are short while the
 film moves and grow geometrically (log-spaced) as it settles. Steps land on the motion's
 breakpoints.
@@ -44,7 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
-from lubecontact.model.fluid_film import fluid_film
+from lubecontact.model.fluid_film import squeeze_content
 from lubecontact.model.model import Model, SolveError
 from lubecontact.model.monolithic_newton import dense_step_serves, monolithic_solve, needs_newton, steady_solve
 from lubecontact.numerics.mesh import build_mesh
@@ -188,26 +188,9 @@ class TimeIntegrator:
         self.rejected = 0
 
     def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
-        return fluid_film(model, film)[0]
-
-    def kink_note(self, level: Level) -> str:
-        """Why a run that stops may have stopped where it did: nodes of the last accepted film
-        within the error weight's floor (motion.tolerance x sigma) of h = 0, below which the
-        film content is frozen (model/fluid_film.py). The film of such a node jumps as it
-        crosses, so the error estimate of a step across stays large however short the step
-        (measured on the 29-node Table 1 line stop at motion.tolerance 1e-5: 128-511 at
-        steps from 1.6e-9 to 1.5e-12 s; bench/EXPERIMENTS.md, eleventh session). "" without
-        asperity contact or such nodes."""
-        if self.contact is None:
-            return ""
-        film, reach = np.abs(level.state.film), self.tolerance * self.floor
-        near = film <= reach
-        if not near.any():
-            return ""
-        return (f"; {int(near.sum())} node(s) of the last accepted film lie within {reach:.2g} m "
-                f"of h = 0 (closest {float(film.min()):.2g} m), where the film content freezes (docs/physics.md "
-                f"section 11): a node's film jumps as it crosses, which no shorter step resolves, the likely "
-                f"reason the run stopped here")
+        """The content the squeeze term differentiates in time: each cell's
+        (model/fluid_film.squeeze_content)."""
+        return squeeze_content(model, film).value
 
     def start(self) -> Level:
         """The steady state at t = 0 (the motion's initial speed)."""
@@ -302,7 +285,7 @@ class TimeIntegrator:
                         failed += 1
                         if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW:
                             failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
-                                       f"({failed} attempt(s) in a row): {outcome}{self.kink_note(levels[-1])}")
+                                       f"({failed} attempt(s) in a row): {outcome}")
                             break
                         self.rejected += 1
                         dt = 0.25 * (t_new - t)
