@@ -58,7 +58,7 @@ def ladder_table(cases: Sequence[Mapping], data: Sequence[xr.Dataset]) -> xr.Dat
         values = np.array([v for v, _ in members], dtype=float)
         times = np.array([float(ds["reconnect_time"]) for _, ds in members])
         out.coords[part] = xr.DataArray(values, dims=part, attrs={"long_name": long_name, "units": units})
-        out[f"{part}_ny"] = (part, np.array([c["overrides"]["mesh.ny"] for _, _, c in planned]),
+        out[f"{part}_ny"] = (part, np.array([c["ny"] for _, _, c in planned]),
                              {"long_name": "nodes along the cylinder axis (1: line contact)", "units": "1"})
         _member_variables(out, part, members, times)
         reached = np.isfinite(times) & (times > 0.0) & (out[f"{part}_converged"].values == 1)

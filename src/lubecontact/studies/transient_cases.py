@@ -81,7 +81,8 @@ def ladder_cases(name: str, ladder: Mapping) -> list[dict]:
     (its optional set:) on every mesh of ``meshes``, nodes along the sliding direction, each
     with ``mesh_ny`` nodes along the cylinder axis (n x mesh_ny; n x n without it, n x 1 with
     ``line: true``), part "mesh", then on the square mesh ``tolerances.mesh`` at every
-    motion.tolerance of ``tolerances.values``, part "tolerance". Each ladder needs three
+    motion.tolerance of ``tolerances.values``, part "tolerance"; each case names its nodes
+    along y (``ny``) beside its overrides, which the workflow does not pass on. Each ladder needs three
     different values at least (Richardson extrapolation with an observed order); ValueError
     names the figure."""
     shared = dict(ladder.get("set") or {})
@@ -102,7 +103,8 @@ def ladder_cases(name: str, ladder: Mapping) -> list[dict]:
     if len(set(meshes)) < 3:
         raise ValueError(f"transient figure {name!r}: 'meshes' needs three different meshes at least, got {meshes}")
     cases = [{"label": shape(nodes(n, ladder.get("mesh_ny"))), "part": "mesh", "value": int(n),
-              "overrides": {**shared, **nodes(n, ladder.get("mesh_ny"))}} for n in sorted(meshes)]
+              "ny": nodes(n, ladder.get("mesh_ny"))["mesh.ny"], "overrides": {**shared, **nodes(n, ladder.get("mesh_ny"))}}
+             for n in sorted(meshes)]
     tolerances = ladder.get("tolerances")
     if tolerances is not None:
         values = sorted((float(t) for t in tolerances["values"]), reverse=True)
@@ -110,6 +112,7 @@ def ladder_cases(name: str, ladder: Mapping) -> list[dict]:
             raise ValueError(f"transient figure {name!r}: 'tolerances.values' needs three different positive "
                              f"tolerances at least, got {tolerances['values']}")
         cases += [{"label": f"tolerance {t:g}, {shape(nodes(tolerances['mesh']))}", "part": "tolerance", "value": t,
+                   "ny": nodes(tolerances["mesh"])["mesh.ny"],
                    "overrides": {**shared, **nodes(tolerances["mesh"]), "motion.tolerance": t}} for t in values]
     return cases
 
