@@ -125,10 +125,10 @@ def test_default_grids(fresh):
     # the full path (fig04p-10p) 1 + 3 + 3 + 4 + 3 = 14 curves of 26 speeds; fig12: 16 curves of 16.
     # transient: 5 stop curves + 7 viscosities x 3 forces (3 of them stop curves: Table 1,
     # mu = 1 Pa s, F = 2 N) + 6 temperatures x 2 forces (the datasheet oil) + 1 vibration +
-    # 3 shocks + the accuracy ladders' meshes 31, 71, 101 and tolerances 2e-3, 5e-4 (51 x 51
-    # at 1e-3 is the stop figure's Table 1 case) + the oil and 3 greases at 0.5 N + 5 yield
-    # stresses x 3 forces (3 of them the grease figure's)
-    transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 5 + 4 + 15 - 3, "transient_figure": 7,
+    # 3 shocks + the accuracy ladders' meshes 31, 51, 101, 201 along x (21 along y) and
+    # tolerances 2e-3, 5e-4 (51 x 51 at 1e-3 is the stop figure's Table 1 case) + the oil and 3
+    # greases at 0.5 N + 5 yield stresses x 3 forces (3 of them the grease figure's)
+    transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 6 + 4 + 15 - 3, "transient_figure": 7,
                  "transient_accuracy": 1}
     assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
@@ -229,11 +229,15 @@ def test_transient_cases_have_units_and_reconnect(built):
         else:  # a shock: 30 g (m a below the 0.5 N preload) stays closed, 100 g (above) opens
             pull = -scene["motion"]["mass"] * scene["motion"]["vibration_acceleration"]
             assert (ds["event_count"].item() > 0) == (pull > scene["operating"]["force"])
-    # the accuracy ladders: the reconnect time grows with the mesh towards its extrapolation
+    # the accuracy ladders: every member reconnects, each ladder is extrapolated. (Since the
+    # squeeze term takes each cell's content the 21- to 41-node meshes are within the time
+    # error of 1e-2 of each other, 7.5-8.2 ms, no longer growing with the mesh as with nodal
+    # content: bench/EXPERIMENTS.md, twelfth session)
     ladder = xr.load_dataset(built / "results" / "test" / "data" / "transient_accuracy.nc")
-    times = ladder["mesh_reconnect_time"].values
-    assert np.all(np.diff(times) > 0.0) and float(ladder["mesh_extrapolated"]) > times[-1]
-    assert np.isfinite(ladder["tolerance_error"].values).all()
+    for part in ("mesh", "tolerance"):
+        times = ladder[f"{part}_reconnect_time"].values
+        assert np.all(np.isfinite(times) & (times > 0.0)) and np.isfinite(float(ladder[f"{part}_extrapolated"]))
+        assert np.isfinite(ladder[f"{part}_error"].values).all() and ladder.attrs["notes"] == ""
 
 
 @pytest.mark.slow
