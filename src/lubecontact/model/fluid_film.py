@@ -71,31 +71,34 @@ def squeeze_content(model: Model, film: np.ndarray) -> ControlVolumeMean:
     its film crosses the floor, not at once when its node does); smooth surfaces, whose
     content is the film itself, keep the nodal value (lumped: second order without a kink)."""
     if model.contact is None:
-        h_t, _, slope, _ = fluid_film(model, film, slopes=True)
-        return ControlVolumeMean.lumped(h_t, slope)
-    floor = FLUID_FILM_FLOOR_SIGMAS * model.contact.sigma
+        return ControlVolumeMean.lumped(*content_law(model)(film))
+    return control_volume_mean(film, frozen_content_law(model), FLUID_FILM_FLOOR_SIGMAS * model.contact.sigma)
+
+
+def frozen_content_law(model: Model):
+    """h -> (h_T, dh_T/dh) of content_law, frozen below FLUID_FILM_FLOOR_SIGMAS x sigma with
+    rough surfaces (slope 0 there); smooth surfaces: content_law itself."""
     content = content_law(model)
+    if model.contact is None:
+        return content
+    floor = FLUID_FILM_FLOOR_SIGMAS * model.contact.sigma
 
     def frozen(h):
         value, slope = content(np.maximum(h, floor))
-        return value, np.where(h > floor, slope, 0.0)
+        return value, np.where(h < floor, 0.0, slope)
 
-    return control_volume_mean(film, frozen, floor)
+    return frozen
 
 
 def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
     """(h_T, k) at the nodes for the Reynolds equation (Eqs. 1-2; content_law and
     coefficient_law, the content frozen below FLUID_FILM_FLOOR_SIGMAS); with ``slopes``
-    also their derivatives (dh_T/dh, dk/dh) for the adjoint (content slope 0 below the floor)."""
-    sigma = model.contact.sigma if model.contact is not None else None
+    also their derivatives (dh_T/dh, dk/dh) for the adjoint (content slope 0 below the floor:
+    frozen_content_law)."""
     k, dk = coefficient_law(model)(film)
-    held = np.zeros(film.shape, dtype=bool)
-    if sigma is not None:
-        held = film < FLUID_FILM_FLOOR_SIGMAS * sigma
-        film = np.maximum(film, FLUID_FILM_FLOOR_SIGMAS * sigma)
-    h_t, dh_t = content_law(model)(film)
+    h_t, dh_t = frozen_content_law(model)(film)
     if slopes:
-        return h_t, k, np.where(held, 0.0, dh_t), dk
+        return h_t, k, dh_t, dk
     return h_t, k
 
 

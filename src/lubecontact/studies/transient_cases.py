@@ -102,18 +102,18 @@ def ladder_cases(name: str, ladder: Mapping) -> list[dict]:
     meshes = list(ladder["meshes"])
     if len(set(meshes)) < 3:
         raise ValueError(f"transient figure {name!r}: 'meshes' needs three different meshes at least, got {meshes}")
-    cases = [{"label": shape(nodes(n, ladder.get("mesh_ny"))), "part": "mesh", "value": int(n),
-              "ny": nodes(n, ladder.get("mesh_ny"))["mesh.ny"], "overrides": {**shared, **nodes(n, ladder.get("mesh_ny"))}}
-             for n in sorted(meshes)]
+    ladder_meshes = [(int(n), nodes(n, ladder.get("mesh_ny"))) for n in sorted(meshes)]
+    cases = [{"label": shape(mesh), "part": "mesh", "value": n, "ny": mesh["mesh.ny"], "overrides": {**shared, **mesh}}
+             for n, mesh in ladder_meshes]
     tolerances = ladder.get("tolerances")
     if tolerances is not None:
         values = sorted((float(t) for t in tolerances["values"]), reverse=True)
         if len(set(values)) < 3 or min(values) <= 0.0:
             raise ValueError(f"transient figure {name!r}: 'tolerances.values' needs three different positive "
                              f"tolerances at least, got {tolerances['values']}")
-        cases += [{"label": f"tolerance {t:g}, {shape(nodes(tolerances['mesh']))}", "part": "tolerance", "value": t,
-                   "ny": nodes(tolerances["mesh"])["mesh.ny"],
-                   "overrides": {**shared, **nodes(tolerances["mesh"]), "motion.tolerance": t}} for t in values]
+        mesh = nodes(tolerances["mesh"])
+        cases += [{"label": f"tolerance {t:g}, {shape(mesh)}", "part": "tolerance", "value": t, "ny": mesh["mesh.ny"],
+                   "overrides": {**shared, **mesh, "motion.tolerance": t}} for t in values]
     return cases
 
 
