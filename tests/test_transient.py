@@ -11,6 +11,7 @@ import pytest
 
 import lubecontact as lc
 from lubecontact.model import coupling
+from lubecontact.unsteady import integrator
 from lubecontact.unsteady.integrator import bdf_coefficients, error_fraction
 from lubecontact.unsteady.motion import SpeedHistory
 from lubecontact.unsteady.series import cycle_peaks, reconnect_time
@@ -345,8 +346,11 @@ def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch
     """model/coupling.STEP_STALL_ITERATIONS: a time step's deformation iteration that has not
     halved its change in that many iterations fails, naming the stall, so the integrator
     retries it shorter; a steady solve, which has no shorter step, keeps iterating. With the
-    limit at one iteration every step that does not halve its change at once stalls."""
+    limit at one iteration every step that does not halve its change at once stalls; the
+    step's own stopping test (a tenth of its error weight, integrator.NONLINEAR_FRACTION) is
+    tightened a millionfold so that its steps need more than one iteration."""
     monkeypatch.setattr(coupling, "STEP_STALL_ITERATIONS", 1)
+    monkeypatch.setattr(integrator, "NONLINEAR_FRACTION", 1e-7)
     overrides = {"mesh.nx": 15, "mesh.ny": 11, "motion.kind": "stop", "motion.duration": 2e-3}
     steady = lc.solve(lc.load_scene(TABLE1, overrides))
     assert steady["converged"].item() == 1

@@ -13,7 +13,9 @@ Algorithm (only the enabled effects are assembled and run):
    rough surfaces the coupled step with the fluid's stiffness, shortened by backtracking
    near a fold where full steps cycle between cavitated sets; otherwise the contact Newton
    step accelerated by Anderson mixing. The next z is predicted to first order from the
-   load gradient. Stop when the change is below ``tolerance`` times the deformation's range.
+   load gradient. Stop when the change is below ``tolerance`` times the deformation's range;
+   in a time step, when it is below a tenth of the step's error weight at every node
+   (Model.squeeze.settled, unsteady/integrator.py).
 Every solve reports its residuals and a ``converged`` flag; nothing is silently accepted.
 The discrete coupled problem can have more than one converged solution at some hard points
 (very smooth surfaces on coarse meshes, where the fluid load jumps as the contact edge
@@ -224,7 +226,7 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
             new_delta = model.deformation(state.total_pressure)
             change = float(np.max(np.abs(new_delta - delta)))
             relative_change = change / max(float(np.ptp(new_delta)), 1e-15)
-            if relative_change <= tol:
+            if relative_change <= tol if model.squeeze is None else model.squeeze.settled(state.film, new_delta - delta):
                 deformation_converged = True
                 break
             if backtracking is not None:

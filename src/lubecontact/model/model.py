@@ -44,6 +44,9 @@ class SqueezeTerm(Protocol):
     def rate(self, expected_gap: np.ndarray) -> np.ndarray:
         """dh_T/dt (m/s) at each node for the film content ``expected_gap`` (m)."""
 
+    def settled(self, film: np.ndarray, correction: np.ndarray) -> bool:
+        """Whether a film correction (m, per node) meets the step's stopping test."""
+
 
 class AppliedLoad(Protocol):
     """The force on the cylinder as a function of its position, where it is not the constant

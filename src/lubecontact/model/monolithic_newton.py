@@ -34,7 +34,8 @@ and starts from its interpolated solution; where Newton still fails from the sta
 load is approached by continuation from a fraction of it.
 
 Stopping tests, in physical units and all met together (``solver.tolerance`` = tol):
-|F_fluid + F_contact - F| <= tol F, max |R_delta| <= tol max(range of delta, h_s), and
+|F_fluid + F_contact - F| <= tol F, max |R_delta| <= tol max(range of delta, h_s) (in a
+time step: a tenth of the step's error weight at every node, Model.squeeze.settled), and
 max |R_p| <= tol p_s with p_s the peak pressure.
 """
 
@@ -340,12 +341,14 @@ def longest_film_step(model: Model, lin: Linearisation, d_delta, dz) -> float:
     return float(min(1.0, FILM_STEP_FRACTION * np.min(lin.state.film[closing] / -dh[closing])))
 
 
-def converged(lin: Linearisation, tolerance: float) -> bool:
+def converged(model: Model, lin: Linearisation, tolerance: float) -> bool:
     """The stopping tests of the module docstring."""
     force_ok = abs(lin.r_z) / lin.film_scale <= tolerance
     reynolds_ok = lin.state.reynolds is None or lin.state.reynolds.residual <= tolerance
     deformation_ok = True
-    if lin.r_delta is not None:
+    if lin.r_delta is not None and model.squeeze is not None:
+        deformation_ok = model.squeeze.settled(lin.state.film, lin.r_delta)
+    elif lin.r_delta is not None:
         reach = max(float(np.ptp(lin.state.delta)), lin.film_scale)
         deformation_ok = float(np.max(np.abs(lin.r_delta))) <= tolerance * reach
     return force_ok and reynolds_ok and deformation_ok
@@ -372,7 +375,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
     influence = dense_influence(model)
     history = [lin.merit()]
     for iteration in range(1, max_iterations + 1):
-        if converged(lin, tolerance):
+        if converged(model, lin, tolerance):
             return lin, iteration - 1, stiffness, ""
         if len(history) > STALL_ITERATIONS and history[-1] > STALL_FACTOR * history[-1 - STALL_ITERATIONS]:
             return lin, iteration, stiffness, (
@@ -402,7 +405,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
             lin = linearise(model, it, smoothing_for(candidate))
         forcing = min(0.1, GMRES_FORCING + np.sqrt(lin.merit() / max(merit, 1e-300)))
         history.append(lin.merit())
-    if converged(lin, tolerance):
+    if converged(model, lin, tolerance):
         return lin, max_iterations, stiffness, ""
     return lin, max_iterations, stiffness, f"{max_iterations} Newton iterations without meeting the tolerances"
 
