@@ -23,6 +23,9 @@ import lubecontact as lc
 
 TABLE1 = "config/scenes/table1.yaml"
 BUDGET = 30  # s of wall clock per case; each measured at 0.5-17 s on the shared 2-core machine
+# except cases that now converge and take longer: the 100 Pa s fretting runs to the end in
+# 24-30 s (149 Newton steps with long line searches); its alarm still stops a run that hangs
+LONGER_BUDGET = {"fretting_stiff_grease": 60}
 QUICK = {"mesh.ny": 1, "solver.max_iterations": 20}
 # a smooth elastic line contact on a fixed domain (tests/test_lubricated.py), at Moes' M = 13 and 23
 SOFT_FILM = {"effects.asperity_contact": False, "mesh.ny": 1, "mesh.nx": 401, "mesh.x_min": -2.5e-4, "mesh.x_max": 1e-4}
@@ -50,7 +53,7 @@ CASES = {
     "fretting_stiff_grease": (True, {**GREASE, "lubricant.viscosity": 100.0, "motion.amplitude": 50e-6,
                                      "motion.frequency": 100.0},
                               "converges since a step stops at a tenth of its error weight (it failed at t = 5.3e-9 s), "
-                              "24 s beside another run"),
+                              "24-30 s (a longer alarm, LONGER_BUDGET)"),
     # the same fretting on the default 51-node line (the issue's scene) still fails
     "fretting_stiff_grease_51_nodes": (True, {**GREASE, "mesh.nx": 51, "lubricant.viscosity": 100.0,
                                               "motion.amplitude": 50e-6, "motion.frequency": 100.0},
@@ -92,15 +95,19 @@ class OverBudget(Exception):
     pass
 
 
+def budget(case):
+    return LONGER_BUDGET.get(case, BUDGET)
+
+
 def run_within_budget(case):
     transient, overrides, _ = CASES[case]
     scene = lc.load_scene(TABLE1, overrides)
 
     def over(signum, frame):
-        raise OverBudget(f"{case} ran longer than {BUDGET} s")
+        raise OverBudget(f"{case} ran longer than {budget(case)} s")
 
     previous = signal.signal(signal.SIGALRM, over)
-    signal.alarm(BUDGET)
+    signal.alarm(budget(case))
     start = time.perf_counter()
     try:
         result = lc.transient(scene, progress=False) if transient else lc.solve(scene)
@@ -153,7 +160,7 @@ STEP_FAILURE = re.compile(r"NOT CONVERGED: time step at t = (\S+) s \(dt = (\S+)
 @pytest.mark.parametrize("case", list(CASES))
 def test_hard_case_fails_cheaply_saying_where_and_why(case, outcomes):
     outcome = outcomes(case)
-    assert outcome.seconds < BUDGET
+    assert outcome.seconds < budget(case)
     ds = outcome.result
     if isinstance(ds, Exception):  # refused: the message says why, with the number
         assert "positive film everywhere" in str(ds) and "min h =" in str(ds)

@@ -344,19 +344,28 @@ def test_a_small_2d_mesh_steps_by_the_nested_solve_only(monkeypatch):
 
 def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch):
     """model/coupling.STEP_STALL_ITERATIONS: a time step's deformation iteration that has not
-    halved its change in that many iterations fails, naming the stall, so the integrator
-    retries it shorter; a steady solve, which has no shorter step, keeps iterating. With the
-    limit at one iteration every step that does not halve its change at once stalls; the
-    step's own stopping test (a tenth of its error weight, integrator.NONLINEAR_FRACTION) is
-    tightened a millionfold so that its steps need more than one iteration."""
+    halved its change in that many iterations fails, naming the stall, and on a 2-D mesh
+    the step is then taken by one Newton (integrator.nested_then_newton); a steady solve,
+    which has no fallback, keeps iterating. With the limit at one iteration every step that
+    does not halve its change at once stalls; the step's own stopping test (a tenth of its
+    error weight, integrator.NONLINEAR_FRACTION) is tightened a millionfold so that its
+    steps need more than one iteration."""
     monkeypatch.setattr(coupling, "STEP_STALL_ITERATIONS", 1)
     monkeypatch.setattr(integrator, "NONLINEAR_FRACTION", 1e-7)
+    nested_failures = []
+
+    def recorded(model, initial):
+        state, diag = coupling.coupled_solve(model, initial)
+        nested_failures.append(diag.failure)
+        return state, diag
+
+    monkeypatch.setattr(integrator, "coupled_solve", recorded)
     overrides = {"mesh.nx": 15, "mesh.ny": 11, "motion.kind": "stop", "motion.duration": 2e-3}
     steady = lc.solve(lc.load_scene(TABLE1, overrides))
     assert steady["converged"].item() == 1
     series = lc.transient(lc.load_scene(TABLE1, overrides), progress=False)
-    assert series["rejected_steps"].item() > 0
-    assert series["converged"].item() == 0 and "deformation iteration stalled" in series.attrs["notes"]
+    assert any("deformation iteration stalled" in failure for failure in nested_failures)
+    assert series["converged"].item() == 1, series.attrs["notes"]
 
 
 def test_a_steady_start_that_fails_says_why():

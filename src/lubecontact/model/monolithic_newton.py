@@ -22,9 +22,10 @@ Each Newton step linearises all three blocks: the Reynolds block J_pp = D_a + D_
 (sparse, one LU factorisation), its film slope J_ph (numerics/reynolds_jacobian.py), the
 contact stiffness and the influence operator K (an FFT). The pressure update is eliminated
 with the LU factors and the remaining (delta, z) system, the identity minus K times the
-fluid and contact stiffness, is solved densely up to DENSE_NODES nodes (line contacts) and
-by GMRES above, each product one back-substitution and one FFT (without deformation it is
-one scalar equation). A backtracking line search on the
+fluid and contact stiffness, is solved densely on line contacts up to DENSE_NODES nodes and
+otherwise by GMRES, each product one back-substitution and one FFT, preconditioned by the
+same system with K cut to its near field (NearFieldPreconditioner; without deformation it
+is one scalar equation). A backtracking line search on the
 scaled residual norm (Armijo) globalises the step; with smooth surfaces the step is also
 kept short of closing the film (h > 0 at every node: the smooth film has no contact law).
 
@@ -74,15 +75,23 @@ FILM_STEP_FRACTION = 0.9
 GMRES_FORCING = 1e-3
 GMRES_RESTART = 30
 GMRES_CYCLES = 10
+# GMRES is preconditioned by the same reduced system with K cut to its near field, the
+# influence coefficients between nodes at most this many nodes apart along each axis
+# (NearFieldPreconditioner). Measured on Table 1 time steps at 51 x 51 (bench/EXPERIMENTS.md,
+# thirteenth session): 2-3 GMRES iterations a Newton step, where the unpreconditioned
+# GMRES did not reach 0.1 in 300.
+NEAR_FIELD_RADIUS = 2
 # Smoothing of the Fischer-Burmeister function relative to the scaled residual: nodes in a
 # sealed pocket have p = 0 and outflow 0 together, where phi is not differentiable and the
 # generalised Newton step can fail to descend (seen on Table 1 at 1 mm/s: 506 such nodes).
 SMOOTHING_FACTOR = 1e-3
 # The smoothing is lowered (one more evaluation) once the residual allows a tenth of it.
 SMOOTHING_UPDATE = 0.1
-# Up to this many nodes (line contacts) the reduced Newton system is solved densely: its
+# Up to this many nodes a line contact's reduced Newton system is solved densely: its
 # matrix costs n back-substitutions (K is built once per mesh), and its LU (n^3/3 flops) is
-# ~0.1 s at 1500.
+# ~0.1 s at 1500. A 2-D mesh's goes to preconditioned GMRES whatever its size: on Table 1 at
+# 31 x 31 (1395 nodes) a steady Newton took 0.40 and 0.43 s with it at 0.01 and 1 m/s
+# against 1.37 and 2.49 s dense (bench/EXPERIMENTS.md, thirteenth session).
 DENSE_NODES = 1500
 # A Newton iteration whose squared residual norm has not halved in STALL_ITERATIONS
 # iterations has stalled (far from its quadratic convergence): it stops there, cheaply, and
@@ -268,9 +277,9 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
 
 
 def dense_step_serves(model: Model) -> bool:
-    """Whether the Newton's reduced system is solved densely on ``model``'s mesh (at most
-    DENSE_NODES nodes: line contacts), where its steps are cheap and robust."""
-    return model.mesh.nx * model.mesh.ny <= DENSE_NODES
+    """Whether the Newton's reduced system is solved densely on ``model``'s mesh (a line
+    contact of at most DENSE_NODES nodes), where its steps are cheap and robust."""
+    return model.mesh.line and model.mesh.nx <= DENSE_NODES
 
 
 def dense_influence(model: Model) -> np.ndarray | None:
@@ -306,11 +315,63 @@ def dense_reduced_solve(model: Model, lin: Linearisation, lu, weight: float, rhs
     return y
 
 
+@dataclass
+class NearFieldPreconditioner:
+    """An approximate inverse of the reduced (delta, z) system (newton_direction): the same
+    Newton system with the pressure kept as an unknown and K cut to its near field
+    (physics/deformation.ElasticDeformation.near_field), sparse in (pressure, delta),
+
+        [ J_pp        J_ph      ] [dp    ]   [0     ]
+        [ -K_n E      I - K_n C ] [ddelta] = [v     ] - dz b,
+        w a.(E dp + C (ddelta + dz)) - w F'(z) dz = v_z,
+
+    (E: the Reynolds unknowns among the nodes, C: the contact slope, a: nodal areas, w the
+    force row's weight), factorised once (SuperLU) and bordered by z through its Schur
+    complement. Exact when K is its near field; applying it is one pair of triangular solves.
+    The block is factorised in scaled units (pressures by p_s, films by h_s): in Pa and m its
+    entries span ~25 decades, and its LU lost six digits on a 15 x 9 mesh."""
+
+    lu: object  # SuperLU factors of the scaled (pressure, delta) block
+    units: np.ndarray  # the unknowns' scales (p_s for pressures, h_s for films)
+    unknowns: int  # Reynolds unknowns (the leading rows)
+    column: np.ndarray  # the block's inverse times the dz column b
+    row: np.ndarray  # the force row over (pressure, delta)
+    schur: float  # the z pivot left after eliminating (pressure, delta)
+
+    @classmethod
+    def build(cls, model: Model, lin: Linearisation, weight: float) -> "NearFieldPreconditioner":
+        mesh = model.mesh
+        n, m = mesh.nx * mesh.ny, lin.j_pp.shape[0]
+        near = model.deformation.near_field(NEAR_FIELD_RADIUS)
+        embed = sp.csr_matrix((np.ones(m), (np.flatnonzero(lin.unknown.ravel()), np.arange(m))), shape=(n, m))
+        slope, area = lin.contact_slope.ravel(), mesh.nodal_area.ravel()
+        j_ph = sp.csr_matrix(lin.j_ph)
+        block = sp.bmat([[lin.j_pp, j_ph], [-(near @ embed), sp.identity(n) - near @ sp.diags(slope)]], format="csc")
+        units = np.concatenate([np.full(m, lin.pressure_scale), np.full(n, lin.film_scale)])
+        lu = splu(sp.csc_matrix(sp.diags(1.0 / units) @ block @ sp.diags(units)))
+        preconditioner = cls(lu, units, m, np.zeros(m + n), np.zeros(m + n), 1.0)
+        column = preconditioner.block_solve(np.concatenate([j_ph @ np.ones(n), -(near @ slope)]))
+        row = weight * np.concatenate([embed.T @ area, area * slope])
+        corner = weight * (float(area @ slope) - lin.load_slope)
+        return cls(lu, units, m, column, row, corner - float(row @ column))
+
+    def block_solve(self, rhs: np.ndarray) -> np.ndarray:
+        """The (pressure, delta) block's solution for ``rhs`` (Pa-rows, m-rows), in Pa and m."""
+        return self.units * self.lu.solve(rhs / self.units)
+
+    def apply(self, v: np.ndarray) -> np.ndarray:
+        """(d delta, dz) for the right-hand side v = (delta rows, force row)."""
+        x = self.block_solve(np.concatenate([np.zeros(self.unknowns), v[:-1]]))
+        dz = (v[-1] - float(self.row @ x)) / self.schur
+        return np.append((x - dz * self.column)[self.unknowns:], dz)
+
+
 def krylov_reduced_solve(model: Model, lin: Linearisation, pressure_response, weight: float, rhs: np.ndarray,
                          forcing: float) -> np.ndarray:
     """(d delta, dz) of the reduced system by GMRES, each product one back-substitution with
-    the factors of J_pp and one FFT. Raises RuntimeError when GMRES does not reach its
-    tolerance (its direction then need not lower the residual)."""
+    the factors of J_pp and one FFT, preconditioned (NearFieldPreconditioner) where there is
+    a fluid. Raises RuntimeError when GMRES does not reach its tolerance (its direction then
+    need not lower the residual)."""
     mesh = model.mesh
     n = mesh.nx * mesh.ny
     area = mesh.nodal_area
@@ -322,7 +383,12 @@ def krylov_reduced_solve(model: Model, lin: Linearisation, pressure_response, we
                          weight * (float(np.sum(dp * area)) - lin.load_slope * dz))
 
     operator = LinearOperator((n + 1, n + 1), matvec=matvec, dtype=float)
-    y, info = gmres(operator, rhs, rtol=forcing, atol=0.0, restart=GMRES_RESTART, maxiter=GMRES_CYCLES)
+    preconditioner = None
+    if lin.j_pp is not None and lin.j_pp.shape[0]:
+        preconditioner = LinearOperator((n + 1, n + 1), matvec=NearFieldPreconditioner.build(model, lin, weight).apply,
+                                        dtype=float)
+    y, info = gmres(operator, rhs, rtol=forcing, atol=0.0, restart=GMRES_RESTART, maxiter=GMRES_CYCLES,
+                    M=preconditioner)
     if info != 0 or not np.all(np.isfinite(y)):
         raise RuntimeError(f"GMRES of the Newton step did not reach its tolerance {forcing:.2g} (info {info})")
     return y

@@ -33,6 +33,7 @@ from __future__ import annotations
 from functools import cached_property
 
 import numpy as np
+import scipy.sparse as sp
 from scipy import fft
 from scipy.special import xlogy
 
@@ -110,6 +111,7 @@ class ElasticDeformation:
         x_offset, x_used = _wrap_around(mesh.nx, self._padded[1])
         y_offset, y_used = (np.zeros(1), np.ones(1, bool)) if mesh.line else _wrap_around(mesh.ny, self._padded[0])
         kernel = self.influence((x_offset * mesh.dx)[None, :], (y_offset * mesh.dy)[:, None])
+        self._near_fields = {}  # near_field's sparse matrices, by radius
         self._kernel_hat = fft.rfft2(np.where(y_used[:, None] & x_used[None, :], kernel, 0.0))
 
     def influence(self, x_offset, y_offset):
@@ -142,6 +144,31 @@ class ElasticDeformation:
         xs, ys = np.meshgrid(self.mesh.x, self.mesh.y)
         xs, ys = xs.ravel(), ys.ravel()
         return self.influence(xs[:, None] - xs[None, :], ys[:, None] - ys[None, :]) * self._cell_weight.ravel()
+
+    def near_field(self, radius: int) -> sp.csr_matrix:
+        """The entries of K between nodes at most ``radius`` nodes apart along each axis, as a
+        sparse (N, N) matrix (C order; exact where it has entries): the local part of the
+        influence coefficients, for the Newton's preconditioner (model/monolithic_newton.py).
+        Built once per radius and kept."""
+        if radius not in self._near_fields:
+            self._near_fields[radius] = self._near_field(radius)
+        return self._near_fields[radius]
+
+    def _near_field(self, radius: int) -> sp.csr_matrix:
+        ny, nx = self.mesh.shape
+        index = np.arange(nx * ny).reshape(ny, nx)
+        rows, cols, values = [], [], []
+        reach_y, reach_x = min(radius, ny - 1), min(radius, nx - 1)
+        for oy in range(-reach_y, reach_y + 1):
+            for ox in range(-reach_x, reach_x + 1):
+                # targets (iy, ix), sources (iy - oy, ix - ox), both on the mesh
+                ty, tx = slice(max(0, oy), ny + min(0, oy)), slice(max(0, ox), nx + min(0, ox))
+                sy, sx = slice(max(0, -oy), ny + min(0, -oy)), slice(max(0, -ox), nx + min(0, -ox))
+                rows.append(index[ty, tx].ravel())
+                cols.append(index[sy, sx].ravel())
+                values.append(self.influence(ox * self.mesh.dx, oy * self.mesh.dy) * self._cell_weight[sy, sx].ravel())
+        n = nx * ny
+        return sp.csr_matrix((np.concatenate(values), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n))
 
     def direct(self, pressure):
         """The same displacement by the O(N^2) sum over all node pairs (for tests; N^2 memory)."""

@@ -157,13 +157,11 @@ def step_solve(model: Model, initial: WarmStart):
     the Newton's, else both failures named. Measured on Table 1 stops: the Newton alone
     fails on the 201-node line where the nested solve converges, and the nested alone on
     the 20 N stop and at motion.tolerance 1e-5 (tests/test_hard_cases.py). A contact with
-    mass and spring (Model.load), a grease and solver.method newton have the Newton only. On a 2-D
-    mesh, where the Newton's step is an unpreconditioned GMRES solve (slow), the nested
-    solve alone: a 31 x 31 mesh (961 nodes) would fit the dense step, but a Table 1 stop
-    took 160 s with it against 8 s nested (the dense 962-unknown factorisation every
-    iteration)."""
-    if model.mesh.ny > 1 or not dense_step_serves(model):
-        return coupled_solve(model, initial)
+    mass and spring (Model.load), a grease and solver.method newton have the Newton only.
+    On a 2-D mesh (or a line beyond the dense Newton's size) the other way round
+    (nested_then_newton): the nested solve is cheaper where it converges."""
+    if not dense_step_serves(model):
+        return nested_then_newton(model, initial)
     state, diag = monolithic_solve(model, initial, continuation=False)
     if model.load is not None or needs_newton(model):  # the nested solve has no F(z), nor a grease
         if not diag.converged:
@@ -174,16 +172,44 @@ def step_solve(model: Model, initial: WarmStart):
     if diag.converged:
         start = WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure, cavitated=state.reynolds.cavitated
                           if state.reynolds is not None else None)
-    try:
-        nested_state, nested = coupled_solve(model, start)
-        why = nested.failure or "it did not meet its tolerances"
-    except SolveError as err:
-        nested_state, nested, why = None, None, str(err)
+    nested_state, nested, why = nested_step(model, start)
     if nested is not None and nested.converged:
         return nested_state, nested
     if diag.converged:
         return state, diag
     return state, dataclasses.replace(diag, failure=f"one Newton: {diag.failure}; then the nested coupled solve: {why}")
+
+
+def nested_step(model: Model, initial: WarmStart):
+    """(state, diagnostics, failure message) of the nested coupled solve of a step; state
+    and diagnostics None where it raised."""
+    try:
+        state, diag = coupled_solve(model, initial)
+    except SolveError as err:
+        return None, None, str(err)
+    return state, diag, diag.failure or "it did not meet its tolerances"
+
+
+def nested_then_newton(model: Model, initial: WarmStart):
+    """(state, diagnostics) of a step on a 2-D mesh: the nested coupled solve, and where it
+    fails one Newton from the same predictor (its reduced system by preconditioned GMRES,
+    monolithic_newton.NearFieldPreconditioner), else both failures named. The nested solve
+    is the cheaper where it converges: a Table 1 stop at 51 x 51 took 206 s with a Newton
+    every step against 9 s nested (bench/EXPERIMENTS.md, thirteenth session). Where its
+    cavitated set flickers on a squeeze film near rest (the R = 5 mm stop at t = 3 ms) its
+    deformation iteration stalls, and the Newton's smoothed complementarity does not."""
+    if needs_newton(model):
+        state, diag = monolithic_solve(model, initial, continuation=False)
+        if not diag.converged:
+            diag = dataclasses.replace(diag, failure=f"one Newton (the only solver of a grease): {diag.failure}")
+        return state, diag
+    nested_state, nested, why = nested_step(model, initial)
+    if nested is not None and nested.converged:
+        return nested_state, nested
+    state, diag = monolithic_solve(model, initial, continuation=False)
+    if diag.converged:
+        return state, diag
+    return state, dataclasses.replace(diag, failure=f"the nested coupled solve: {why}; then one Newton: {diag.failure}")
 
 
 def scene_at(scene, speed: float):
