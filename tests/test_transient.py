@@ -399,3 +399,17 @@ def test_a_billion_cycles_are_refused_before_anything_runs():
     assert time.perf_counter() - start < 1.0
     assert main(["transient", TABLE1, "--set", "motion.kind=oscillation", "--set", "motion.cycles=1000000000",
                  "--out", "never.nc"]) == 2
+
+
+def test_the_newton_fallback_stops_after_failing_twice_in_a_row():
+    """integrator.NewtonFallback: a 2-D step's Newton fallback is skipped once it has failed
+    MAX_FALLBACK_FAILURES (2) times in a row; a step it takes before that resets the count."""
+    fallback = integrator.NewtonFallback()
+    assert fallback.enabled
+    fallback.record(False)
+    assert fallback.enabled
+    fallback.record(True)
+    fallback.record(False)
+    assert fallback.enabled
+    fallback.record(False)
+    assert not fallback.enabled

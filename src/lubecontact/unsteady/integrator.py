@@ -13,8 +13,8 @@ BDF2 difference (BDF1 on the first step and after a breakpoint of the motion)
 
 which enters the Reynolds right-hand side as a nodal source and, through c0, the load
 sensitivity, so Newton on z keeps its quadratic convergence. Each step is one coupled
-solve (step_solve: one Newton and the nested solve on a line contact, the nested solve on a
-2-D mesh) warm-started from the extrapolated film of the last steps.
+solve (step_solve: one Newton and the nested solve on a line contact, the nested solve and
+one Newton where it fails on a 2-D mesh) warm-started from the extrapolated film of the last steps.
 
 Error control (Milne's device): the film predicted by polynomial extrapolation through the
 last p + 1 levels and the BDF_p result differ by (P_p - D_p/c0) h^{(p+1)}, of which the
@@ -147,7 +147,32 @@ class Level:
     velocity: float = 0.0  # dz/dt of the cylinder, m/s (a contact with mass; unsteady/dynamics.py)
 
 
-def step_solve(model: Model, initial: WarmStart):
+# A 2-D step's Newton fallback (nested_then_newton) that has failed this many times in a row
+# is not tried again in the run: where it cannot help it costs a Newton at every failed
+# attempt. The R = 5 mm stop at 51 x 51 fails at t = 3.0 ms after
+# 256 s of CPU with the Newton tried at every failed attempt, 224 s with this limit and
+# 187 s without a fallback; on 21 x 21 it takes the same path with the limit (22 steps
+# taken by the Newton, 5.1667 ms, 48 s; bench/EXPERIMENTS.md, thirteenth session).
+MAX_FALLBACK_FAILURES = 2
+
+
+@dataclass
+class NewtonFallback:
+    """Whether a 2-D step that the nested solve fails is retried by one Newton: until the
+    Newton has failed MAX_FALLBACK_FAILURES times in a row (a step it takes resets the count;
+    once reached, the rest of the run goes without it, and its failures say so)."""
+
+    failures_in_a_row: int = 0
+
+    @property
+    def enabled(self) -> bool:
+        return self.failures_in_a_row < MAX_FALLBACK_FAILURES
+
+    def record(self, converged: bool):
+        self.failures_in_a_row = 0 if converged else self.failures_in_a_row + 1
+
+
+def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
     """(state, diagnostics) of one time step from the predictor ``initial``. On a line
     contact (monolithic_newton.dense_step_serves) one Newton (docs/physics.md section 20),
     then the nested coupled solve (model/coupling.py) from the Newton's answer where it
@@ -161,7 +186,7 @@ def step_solve(model: Model, initial: WarmStart):
     On a 2-D mesh (or a line beyond the dense Newton's size) the other way round
     (nested_then_newton): the nested solve is cheaper where it converges."""
     if not dense_step_serves(model):
-        return nested_then_newton(model, initial)
+        return nested_then_newton(model, initial, fallback)
     state, diag = monolithic_solve(model, initial, continuation=False)
     if model.load is not None or needs_newton(model):  # the nested solve has no F(z), nor a grease
         if not diag.converged:
@@ -190,14 +215,15 @@ def nested_step(model: Model, initial: WarmStart):
     return state, diag, diag.failure or "it did not meet its tolerances"
 
 
-def nested_then_newton(model: Model, initial: WarmStart):
+def nested_then_newton(model: Model, initial: WarmStart, fallback: NewtonFallback):
     """(state, diagnostics) of a step on a 2-D mesh: the nested coupled solve, and where it
     fails one Newton from the same predictor (its reduced system by preconditioned GMRES,
     monolithic_newton.NearFieldPreconditioner), else both failures named. The nested solve
     is the cheaper where it converges: a Table 1 stop at 51 x 51 took 206 s with a Newton
     every step against 9 s nested (bench/EXPERIMENTS.md, thirteenth session). Where its
     cavitated set flickers on a squeeze film near rest (the R = 5 mm stop at t = 3 ms) its
-    deformation iteration stalls, and the Newton's smoothed complementarity does not."""
+    deformation iteration stalls, and the Newton's smoothed complementarity does not. The
+    Newton is skipped while ``fallback`` says it keeps failing (NewtonFallback)."""
     if needs_newton(model):
         state, diag = monolithic_solve(model, initial, continuation=False)
         if not diag.converged:
@@ -206,7 +232,14 @@ def nested_then_newton(model: Model, initial: WarmStart):
     nested_state, nested, why = nested_step(model, initial)
     if nested is not None and nested.converged:
         return nested_state, nested
+    if not fallback.enabled:
+        why = (f"the nested coupled solve: {why}; one Newton not tried (it failed the last "
+               f"{fallback.failures_in_a_row} times)")
+        if nested is None:
+            raise SolveError(why)
+        return nested_state, dataclasses.replace(nested, failure=why)
     state, diag = monolithic_solve(model, initial, continuation=False)
+    fallback.record(diag.converged)
     if diag.converged:
         return state, diag
     return state, dataclasses.replace(diag, failure=f"the nested coupled solve: {why}; then one Newton: {diag.failure}")
@@ -233,6 +266,7 @@ class TimeIntegrator:
         self.base = BaseExcitation.from_scene(scene)
         self.coupled_solves = 0
         self.rejected = 0
+        self.fallback = NewtonFallback()
 
     def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
         """The content the squeeze term differentiates in time: each cell's
@@ -277,7 +311,7 @@ class TimeIntegrator:
             initial.cavitated = last.state.reynolds.cavitated
             initial.pressure = last.state.reynolds.pressure
         try:
-            state, diag = step_solve(model, initial)
+            state, diag = step_solve(model, initial, self.fallback)
         except SolveError as err:
             return None, str(err)
         self.coupled_solves += 1
