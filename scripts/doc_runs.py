@@ -326,9 +326,13 @@ def transient_accuracy_block(table_file: Path | None = None, log=print) -> str:
     within = cheapest_within(table, "mesh", 0.05)
     five = (f"The cheapest mesh within 5 % is {shapes[list(nodes).index(within[0])]} ({num(within[1])} s)." if within
             else f"No mesh of the ladder is within 5 %: the finest, {shapes[-1]}, is {num(100 * errors[-1])} % low.")
+    def rough(part):
+        """The caveat of a ladder outside the asymptotic range (studies/accuracy.richardson)."""
+        return "" if int(table[f"{part}_asymptotic"]) else "; not in the asymptotic range: extrapolation and errors are rough"
+
     return (f"The Table 1 stop's reconnect time (`results/data/transient_accuracy.md`, {when}; wall time of each run): "
             f"{members}; extrapolated {seconds(float(table['mesh_extrapolated']))} (observed order "
-            f"{float(table['mesh_order']):.2g}). {five} On the default 51² mesh, the time-step tolerance's own error at "
-            f"its default ({default:g}) is {num(100 * tol_error)} % against its extrapolation "
+            f"{float(table['mesh_order']):.2g}{rough('mesh')}). {five} On the default 51² mesh, the time-step "
+            f"tolerance's own error at its default ({default:g}) is {num(100 * tol_error)} % against its extrapolation "
             f"{seconds(float(table['tolerance_extrapolated']))} (observed order {float(table['tolerance_order']):.2g}, "
-            f"over {', '.join(f'{t:g}' for t in sorted(tolerances, reverse=True))}).")
+            f"over {', '.join(f'{t:g}' for t in sorted(tolerances, reverse=True))}{rough('tolerance')}).")
