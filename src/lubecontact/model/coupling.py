@@ -226,7 +226,8 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
             new_delta = model.deformation(state.total_pressure)
             change = float(np.max(np.abs(new_delta - delta)))
             relative_change = change / max(float(np.ptp(new_delta)), 1e-15)
-            if relative_change <= tol if model.squeeze is None else model.squeeze.settled(state.film, new_delta - delta):
+            if (relative_change <= tol if model.squeeze is None
+                    else model.squeeze.settled(state.film, new_delta - delta)):
                 deformation_converged = True
                 break
             if backtracking is not None:
