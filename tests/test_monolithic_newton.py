@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import lubecontact as lc
+from lubecontact.model import monolithic_newton as mn
 from lubecontact.model.auto_effects import operating_point
 from lubecontact.model.fluid_film import fluid_faces, fluid_film
 from lubecontact.model.model import Model
@@ -156,8 +157,6 @@ def test_the_near_field_preconditioner_inverts_the_reduced_system_when_the_near_
     inverse of the reduced (delta, z) system, assembled here densely from its definition
     (the total pressure's response T = C - E J_pp^-1 J_ph, the rows I - K T | -K T 1 and the
     force row); with the default radius it is not (GMRES then needs it)."""
-    from lubecontact.model import monolithic_newton as mn
-
     model = Model.assemble(lc.load_scene(TABLE1, {"mesh.nx": 15, "mesh.ny": 9, "operating.speed": 1.0}))
     state, diag = mn.monolithic_solve(model)
     assert diag.converged
