@@ -56,6 +56,32 @@ def test_onset_is_linear_in_the_open_area_fraction():
     np.testing.assert_allclose(law(H * SIGMA)[0] / K_VALID, expected, rtol=1e-12)
 
 
+@pytest.mark.parametrize("exponent", [1.3, 2.0])
+def test_an_exponent_raises_the_open_share_and_keeps_its_limits(exponent):
+    # roughness.percolation_exponent t: k / k(0.5) = share^t, the share of the test above;
+    # still k(0.5) at H = 0.5, the leakage at the threshold, and its slope by finite differences
+    H = np.array([0.05, 0.1, 0.25, 0.4, 0.5 * (1.0 - 1e-9)])
+    share = (norm.cdf(H) - 0.5) / (norm.cdf(0.5) - 0.5)
+    k, dk = percolating_coefficient_and_slope(H * SIGMA, SIGMA, MU, exponent=exponent)
+    np.testing.assert_allclose(k / K_VALID, share**exponent, rtol=1e-12)
+    step = 1e-7 * SIGMA
+    fd = (percolating_coefficient_and_slope((H + 1e-7) * SIGMA, SIGMA, MU, exponent=exponent)[0]
+          - percolating_coefficient_and_slope((H - 1e-7) * SIGMA, SIGMA, MU, exponent=exponent)[0]) / (2 * step)
+    np.testing.assert_allclose(dk[:-1], fd[:-1], rtol=1e-6)
+    sealed = percolating_coefficient_and_slope(np.array([-0.2, 0.0]) * SIGMA, SIGMA, MU, exponent=exponent)[0]
+    np.testing.assert_allclose(sealed, SEALED_LEAKAGE * K_VALID, rtol=1e-14)
+
+
+def test_the_exponent_is_a_scene_key_left_out_of_the_hash_at_its_default():
+    table1 = lc.load_scene("config/scenes/table1.yaml")
+    effective_medium = lc.load_scene("config/scenes/table1.yaml", {"roughness.percolation_exponent": 1.0})
+    steeper = lc.load_scene("config/scenes/table1.yaml", {"roughness.percolation_exponent": 1.3})
+    assert "percolation_exponent" not in table1.canonical_yaml()
+    assert effective_medium.hash == table1.hash and steeper.hash != table1.hash
+    with pytest.raises(ValueError, match="percolation_exponent"):
+        lc.load_scene("config/scenes/table1.yaml", {"roughness.percolation_exponent": 0.5})
+
+
 def test_monotone_and_slopes_match_finite_differences():
     h = np.linspace(-1.0, 4.0, 2001) * SIGMA
     k, dk = law(h)

@@ -47,12 +47,14 @@ def content_law(model: Model):
 
 
 def coefficient_law(model: Model):
-    """h -> (k, dk/dh): Patir-Cheng's Poiseuille coefficient down to percolation (rough
-    surfaces), or h^3/(12 mu) (smooth)."""
+    """h -> (k, dk/dh): Patir-Cheng's Poiseuille coefficient down to percolation with
+    roughness.percolation_exponent (rough surfaces), or h^3/(12 mu) (smooth)."""
     scene = model.scene
-    law = poiseuille_coefficient_and_slope if model.contact is None else percolating_coefficient_and_slope
-    sigma = None if model.contact is None else model.contact.sigma
-    return lambda h: law(h, sigma, scene.lubricant.viscosity, scene.effects.flow_factors)
+    if model.contact is None:
+        return lambda h: poiseuille_coefficient_and_slope(h, None, scene.lubricant.viscosity, scene.effects.flow_factors)
+    sigma, exponent = model.contact.sigma, scene.roughness.percolation_exponent
+    return lambda h: percolating_coefficient_and_slope(h, sigma, scene.lubricant.viscosity, scene.effects.flow_factors,
+                                                       exponent)
 
 
 def yield_stress_law(model: Model) -> YieldStressLaw | None:

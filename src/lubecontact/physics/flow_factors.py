@@ -159,7 +159,9 @@ def poiseuille_coefficient(h, sigma, viscosity, flow_factors=True):
 # threshold of Bruggeman/Kirkpatrick is the same area fraction 1/2).
 # Between the threshold and H = 0.5 the conductance rises as the open fraction's distance
 # from it, exponent t = 1 (the effective-medium conductivity exponent):
-#     k(H) = k(0.5) [(Phi(H) - 1/2) / (Phi(0.5) - 1/2)]       0 < H < 0.5,    0 for H <= 0.
+#     k(H) = k(0.5) [(Phi(H) - 1/2) / (Phi(0.5) - 1/2)]^t     0 < H < 0.5,    0 for H <= 0,
+# t = 1 by default; roughness.percolation_exponent sets it (1.3: 2-D percolation's universal
+# conductivity exponent, for the sensitivity of a result to this law).
 # A sealed film still leaks a little (finite pockets, the asperity-scale remaking of closed
 # clusters by sliding): k never falls below SEALED_LEAKAGE k(0.5). In steady state any leak
 # equilibrates the pockets with the film around them, so the answer is the limit of a
@@ -168,10 +170,11 @@ def poiseuille_coefficient(h, sigma, viscosity, flow_factors=True):
 SEALED_LEAKAGE = 1e-3
 
 
-def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
+def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True, exponent=1.0):
     """(k, dk/dh) of the Poiseuille coefficient down to percolation, m^3/(Pa s) and m^2/(Pa s):
     Patir-Cheng's (``poiseuille_coefficient_and_slope``) for H = h/sigma >= 0.5, the
-    percolation law above for H < 0.5, floored at SEALED_LEAKAGE k(0.5) (slope 0 there).
+    percolation law above for H < 0.5 with the share raised to ``exponent`` t (1: effective
+    medium; roughness.percolation_exponent), floored at SEALED_LEAKAGE k(0.5) (slope 0 there).
     Continuous at H = 0.5, non-decreasing in h. Needs rough surfaces (sigma > 0).
 
     Evaluated in one pass (it runs on every face of every evaluation): above H = 0.5 only the
@@ -190,8 +193,11 @@ def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True):
     # below H = -40 Phi(H) and its slope are 0 to double precision: clipped there, a film far
     # out of range (a rejected iterate) cannot overflow the square
     H_lower = np.clip(H, -40.0, H_VALID)
-    share = (ndtr(H_lower) - 0.5) / reference
+    share = np.maximum(ndtr(H_lower) - 0.5, 0.0) / reference
     share_slope = _INV_SQRT_2PI * np.exp(-0.5 * H_lower**2) / reference
+    if exponent != 1.0:
+        share_slope = exponent * share ** (exponent - 1.0) * share_slope
+        share = share**exponent
     above = H >= H_VALID
     k = np.where(above, upper, k_valid * share)
     slope = np.where(above, upper_slope, k_valid * share_slope / sigma)

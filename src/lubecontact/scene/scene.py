@@ -350,6 +350,12 @@ class Roughness(_Section):
         0.5, _Real("1", low=0.0, low_open=False, high=1.0, high_open=False),
         "share of sigma^2 on the sliding block (the rest on the cylinder): Patir-Cheng shear flow factor",
     )
+    # 1: the effective-medium law (docs/physics.md section 15); 1.3: the universal conductivity
+    # exponent of 2-D percolation. Below 1 the flow's slope is infinite at the threshold.
+    percolation_exponent: float = _field(
+        1.0, _Real("1", low=1.0, low_open=False, high=2.0, high_open=False),
+        "exponent t of the pressure flow between percolation (h = 0) and h = 0.5 sigma: k ~ share^t",
+    )
     surface: str | None = _field(
         None, _OptionalPath(), "measured surface file, relative to the scene file; sets sigma, eta and R_peak"
     )
@@ -360,12 +366,13 @@ class Roughness(_Section):
     directory: str = field(default=".", compare=False)  # where a relative surface path starts
 
     def _all_keys(self):
-        """Every key; the equal split (the default, where the shear flow factor vanishes) is
-        left out, so that scenes written before the key existed keep their canonical form
-        and hash."""
+        """Every key; the equal split (the default, where the shear flow factor vanishes) and
+        the effective-medium percolation exponent 1 are left out, so that scenes written
+        before the keys existed keep their canonical form and hash."""
         data = super().to_dict()
-        if self.split == 0.5:
-            del data["split"]
+        for key, default in (("split", 0.5), ("percolation_exponent", 1.0)):
+            if data[key] == default:
+                del data[key]
         return data
 
     def to_dict(self):
