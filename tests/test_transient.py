@@ -327,6 +327,37 @@ def test_a_stuck_step_gives_up_after_a_few_attempts(monkeypatch):
     assert f"({integrator.MAX_FAILED_IN_A_ROW} attempt(s) in a row): forced failure" in series.attrs["notes"]
 
 
+def test_a_creeping_run_stops_once_its_steps_are_far_below_what_accuracy_asks(monkeypatch):
+    """From t = 1e-5 s on, two of every three attempts fail: dt shrinks fourfold a cycle, with
+    steps accepted in between (the R = 5 mm stop at 51 x 51 crept so from 1e-5 to 1e-15 s
+    steps over 48 failed solves). The run stops at the first failure on a step shorter than
+    motion.tolerance times the step the error test last asked for, and says so."""
+    from lubecontact.unsteady import integrator
+
+    real_step = integrator.TimeIntegrator.step
+    attempts = []
+
+    def creeping(self, levels, t_new, order):
+        if levels[-1].time < 1e-5:
+            return real_step(self, levels, t_new, order)
+        attempts.append(t_new - levels[-1].time)
+        if len(attempts) % 3:
+            return None, "forced failure"
+        return real_step(self, levels, t_new, order)
+
+    monkeypatch.setattr(integrator.TimeIntegrator, "step", creeping)
+    scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.02})
+    series = lc.transient(scene, progress=False)
+    notes = series.attrs["notes"]
+    assert series["converged"].item() == 0 and "the error test last asked for" in notes
+    asked = float(notes.split("times the ")[1].split(" s the error test last asked for")[0])  # 3 digits
+    limit = scene.motion.tolerance * asked
+    failed = [dt for k, dt in enumerate(attempts, start=1) if k % 3]
+    # the first failure below the limit ends the run; a creep to MIN_STEP took ~45 attempts
+    assert failed[-1] < 1.01 * limit and min(failed[:-1]) > 0.99 * limit
+    assert len(attempts) < 20
+
+
 def test_a_small_2d_mesh_steps_by_the_nested_solve_only(monkeypatch):
     """A 2-D mesh small enough for the dense Newton step (31 x 31 = 961 nodes) still steps
     by the nested solve alone (unsteady/integrator.step_solve): with the dense Newton first a

@@ -60,6 +60,11 @@ MIN_STEP = 1.0e-15  # s: below this a failing step ends the run, flagged
 # each failure quarters the step (4^6 = 4096 times shorter), and a step that six shorter
 # attempts cannot pass is stuck (a shorter step makes the squeeze film stiffer, not easier).
 MAX_FAILED_IN_A_ROW = 6
+# A coupled solve that fails on a step shorter than motion.tolerance times the step the error
+# test last asked for (after a step its first attempt took) ends the run: such a step changes
+# the solution by less than the tolerance allows of one step, so shortening it further is not
+# for accuracy, and it only stiffens the squeeze film (mu/dt): what failed is the solver, and
+# the run stops there cheaply instead of creeping on (issue 27: the R = 5 mm stop at 51 x 51).
 # A step's coupled solve has converged when its last film correction is below this fraction
 # of the step's error weight at every node (Squeeze.settled): the nonlinear error then adds at
 # most a tenth of the tolerance to the step's local error. SUNDIALS' CVODE takes the same
@@ -325,8 +330,9 @@ class TimeIntegrator:
 
     def run(self, progress: bool = False, report=None):
         """(levels, failure message or ''): accepted levels from t = 0 to the motion's end,
-        or up to where the run stopped: a step that failed MAX_FAILED_IN_A_ROW times or
-        below MIN_STEP, MAX_STEPS, or an interruption (KeyboardInterrupt, which a SIGTERM
+        or up to where the run stopped: a step that failed MAX_FAILED_IN_A_ROW times, below
+        MIN_STEP or below motion.tolerance times the step the error test last asked for (see
+        MAX_FAILED_IN_A_ROW), MAX_STEPS, or an interruption (KeyboardInterrupt, which a SIGTERM
         handler may raise), whose failure message starts with "interrupted". ``report``
         (a callable taking one line) hears each decade of simulated time reached (1e-6 s,
         1e-5 s, ...): progress where no bar is shown."""
@@ -344,6 +350,7 @@ class TimeIntegrator:
         breaks = sorted({b for b in history.breakpoints() + self.base.breakpoints() if 0.0 < b < history.end})
         breaks.append(history.end)
         dt, order, failure, failed = FIRST_STEP, 1, "", 0
+        asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
         started = time.perf_counter()
         decade = FIRST_STEP  # the next power of ten of simulated time to report
         bar = tqdm(total=history.end, unit="s", desc="transient", disable=not progress,
@@ -359,10 +366,14 @@ class TimeIntegrator:
                     t_new = target if t + 1.1 * dt >= target else t + dt
                     level, outcome = self.step(levels, t_new, order)
                     if level is None:
-                        failed += 1
-                        if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW:
+                        failed, solve_failed = failed + 1, True
+                        needless = asked is not None and t_new - t < self.tolerance * asked
+                        if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW or needless:
+                            short = (f"; below motion.tolerance = {self.tolerance:g} times the {asked:.3g} s the error "
+                                     "test last asked for, a step is not needed for accuracy and a shorter one only "
+                                     "stiffens the squeeze film" if needless else "")
                             failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
-                                       f"({failed} attempt(s) in a row): {outcome}")
+                                       f"({failed} attempt(s) in a row{short}): {outcome}")
                             break
                         self.rejected += 1
                         dt = 0.25 * (t_new - t)
@@ -388,6 +399,9 @@ class TimeIntegrator:
                         dt = t_new - t
                     else:
                         dt, order = (t_new - t) * min(GROWTH, max(SHRINK, factor)), 2
+                    if not solve_failed:
+                        asked = dt
+                    solve_failed = False
         except KeyboardInterrupt:
             failure = f"interrupted at t = {levels[-1].time:.6g} s: the series up to there"
         if not failure and levels[-1].time < history.end:
