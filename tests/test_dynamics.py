@@ -88,6 +88,28 @@ def test_applied_force_is_the_spring_plus_inertia():
     assert Dynamics.from_scene(lc.load_scene(TABLE1)) is None  # the massless contact: today's model
 
 
+def test_the_shortest_step_is_where_the_inertial_force_rounds_to_the_resolution():
+    # Dynamics.shortest_step against the float evaluation the solver makes: the applied force
+    # of a BDF2 step (c0 = 1.5/dt) at z and at its float neighbours, z held at the start
+    # (v = a = 0 before). At the shortest step the force moves by no more than the resolution
+    # from one float of z to the next; at a third of it (nine times the squared rate) by more.
+    scene = lc.load_scene(TABLE1, {"mesh.ny": 1, "motion.mass": 1e-3, "motion.spring_stiffness": 1e3})
+    dynamics = Dynamics.from_scene(scene)
+    z, resolution = 4.8e-6, 5e-8
+    shortest = dynamics.shortest_step(z, resolution)
+    neighbours = [np.nextafter(z, -1.0), z, np.nextafter(z, 1.0)]
+
+    def spread(dt):
+        c = [1.5 / dt, -2.0 / dt, 0.5 / dt]  # BDF2, equal steps
+        load = dynamics.load(0.0, z, c, [z, z], [0.0, 0.0])
+        forces = [load.force(x)[0] for x in neighbours]
+        return max(abs(forces[1] - forces[0]), abs(forces[2] - forces[1]))
+
+    assert spread(shortest) <= resolution < spread(shortest / 3.0)
+    assert 1e-9 < shortest < 1e-8  # above the integrator's first step, 1e-9 s
+    assert Dynamics(0.0, 1e3, 5.0, dynamics.base).shortest_step(z, resolution) == 0.0
+
+
 def test_dynamics_keys_keep_old_hashes_and_bad_ones_are_refused():
     stop = lc.load_scene(TABLE1, {"motion.kind": "stop"})
     assert "mass" not in stop.canonical_yaml() and "vibration" not in stop.canonical_yaml()

@@ -52,7 +52,7 @@ from lubecontact.numerics.mesh import build_mesh
 from lubecontact.unsteady.dynamics import BaseExcitation, Dynamics
 from lubecontact.unsteady.motion import MAX_STEPS
 
-FIRST_STEP = 1.0e-9  # s: first step from the steady start
+FIRST_STEP = 1.0e-9  # s: first step from the steady start (with a mass at least Dynamics.shortest_step)
 GROWTH, SHRINK, SAFETY = 4.0, 0.2, 0.9  # step-size controller limits
 FILM_FLOOR = 1.0e-10  # m: error floor of a smooth film (relative error above it)
 MIN_STEP = 1.0e-15  # s: below this a failing step ends the run, flagged
@@ -345,11 +345,17 @@ class TimeIntegrator:
         if not start.converged:
             why = start.failure or f"{start.iterations} iteration(s) without meeting the tolerances"
             return levels, f"the steady start did not converge: {why}"
+        # with a mass, no shorter step than the one whose inertial force the force balance
+        # resolves to a tenth of its tolerance (Dynamics.shortest_step): below it the rounding of
+        # z'' alone exceeds what the balance must meet (a random vibration's first step failed so)
+        shortest = 0.0 if self.dynamics is None else self.dynamics.shortest_step(
+            levels[0].state.z, NONLINEAR_FRACTION * self.scene.solver.tolerance * self.scene.operating.force)
+        first = max(FIRST_STEP, shortest)
         # a steady state has dh/dt = 0: a virtual earlier level makes the first predictor exact
-        levels.insert(0, dataclasses.replace(levels[0], time=-FIRST_STEP))
+        levels.insert(0, dataclasses.replace(levels[0], time=-first))
         breaks = sorted({b for b in history.breakpoints() + self.base.breakpoints() if 0.0 < b < history.end})
         breaks.append(history.end)
-        dt, order, failure, failed = FIRST_STEP, 1, "", 0
+        dt, order, failure, failed = first, 1, "", 0
         asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
         started = time.perf_counter()
         decade = FIRST_STEP  # the next power of ten of simulated time to report
@@ -368,21 +374,24 @@ class TimeIntegrator:
                     if level is None:
                         failed, solve_failed = failed + 1, True
                         needless = asked is not None and t_new - t < self.tolerance * asked
-                        if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW or needless:
+                        unresolved = t_new - t <= shortest
+                        if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW or needless or unresolved:
                             short = (f"; below motion.tolerance = {self.tolerance:g} times the {asked:.3g} s the error "
                                      "test last asked for, a step is not needed for accuracy and a shorter one only "
                                      "stiffens the squeeze film" if needless else "")
+                            short += (f"; {shortest:.3g} s is the shortest step whose inertial force the force balance "
+                                      "resolves (motion.mass)" if unresolved else "")
                             failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
                                        f"({failed} attempt(s) in a row{short}): {outcome}")
                             break
                         self.rejected += 1
-                        dt = 0.25 * (t_new - t)
+                        dt = max(0.25 * (t_new - t), shortest)
                         continue
                     failed = 0
                     factor = SAFETY * max(outcome, 1e-10) ** (-1.0 / (order + 1))
-                    if outcome > 1.0 and t_new - t > MIN_STEP:
+                    if outcome > 1.0 and t_new - t > max(MIN_STEP, shortest):
                         self.rejected += 1
-                        dt = (t_new - t) * max(SHRINK, min(factor, 1.0))
+                        dt = max((t_new - t) * max(SHRINK, min(factor, 1.0)), shortest)
                         continue
                     levels.append(level)
                     bar.update(t_new - t)
