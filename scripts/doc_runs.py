@@ -38,7 +38,7 @@ from lubecontact.studies.accuracy_plan import study_spec
 from lubecontact.studies.transient_accuracy import cheapest_within, ladder_table
 from lubecontact.studies.transient_cases import figure_cases
 from lubecontact.studies.transient_cases import study_spec as transient_spec
-from lubecontact.unsteady.transient import transient
+from lubecontact.unsteady.transient import PERCOLATION_ALTERNATIVES, transient
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ROOT / "config" / "scenes"
@@ -49,7 +49,7 @@ GREASE = 1000.0  # s simulated: the greases within seconds
 
 # 2-D percolation's universal conductivity exponent (the default 1 is the effective medium's):
 # how much the model's own law below Patir-Cheng's range moves a reconnect time
-PERCOLATION_EXPONENT = 1.3
+PERCOLATION_EXPONENT = PERCOLATION_ALTERNATIVES[1]
 # name -> (row label, scene file, overrides): the reconnect table
 RECONNECT = {
     "table1": ("0.1 Pa s oil (Table 1)", "table1.yaml", {**TABLE1_STOP, "motion.duration": OIL}),

@@ -358,6 +358,26 @@ def test_a_creeping_run_stops_once_its_steps_are_far_below_what_accuracy_asks(mo
     assert len(attempts) < 20
 
 
+def test_a_reconnect_time_says_it_rests_on_the_flow_below_patir_cheng():
+    """The Table 1 stop drains through h/sigma < 0.5 before it reconnects: its notes say from
+    when (the instant the validity flag flow_factor_range is first raised, before the
+    reconnect) and which run brackets it (transient.band_note); a run with the other exponent
+    points back; a motion that never stops has no reconnect time and no such note."""
+    base = {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.speed": 1.0, "motion.duration": 0.02}
+    scene = lc.load_scene(TABLE1, base)
+    ds = lc.transient(scene, progress=False)
+    note = next(n for n in ds.attrs["notes"].split("; ") if n.startswith("reconnect_time rests on"))
+    since = float(note.split("from t = ")[1].split(" s")[0])
+    flagged = next(line for line in ds.attrs["validity_notes"].splitlines() if line.startswith("flow_factor_range"))
+    assert since == float(flagged.split("from t = ")[1].split(" to")[0])
+    assert since < scene.motion.ramp + ds["reconnect_time"].item()  # reconnect_time counts from the ramp's end
+    assert "exponent at 1.3" in note
+    other = lc.transient(lc.load_scene(TABLE1, {**base, "roughness.percolation_exponent": 1.3}), progress=False)
+    assert "exponent at 1 to see how much" in other.attrs["notes"]
+    steady = lc.transient(lc.load_scene(TABLE1, {**base, "motion.kind": "steady", "motion.duration": 2e-3}), progress=False)
+    assert "rests on" not in steady.attrs["notes"]
+
+
 def test_a_small_2d_mesh_steps_by_the_nested_solve_only(monkeypatch):
     """A 2-D mesh small enough for the dense Newton step (31 x 31 = 961 nodes) still steps
     by the nested solve alone (unsteady/integrator.step_solve): with the dense Newton first a

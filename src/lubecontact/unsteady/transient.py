@@ -73,6 +73,11 @@ def integration_error(value: float, tighter: float | None) -> float:
     return abs(value - tighter) / (1.0 - ERROR_BAR_TIGHTENING ** -ERROR_ORDER_IN_TOLERANCE)
 
 
+# the effective medium's exponent and 2-D percolation's (roughness.percolation_exponent): a
+# reconnect time run with one is bracketed by a second run with the other
+PERCOLATION_ALTERNATIVES = (1.0, 1.3)
+
+
 def creep_note(levels) -> str:
     """What the bi-viscous regularisation of a grease may cost over the run (docs/physics.md
     section 21), "" for a Newtonian lubricant: a film held at its yield limit thins through
@@ -91,6 +96,25 @@ def creep_note(levels) -> str:
             f"({thickest:.3g} m), so by up to {lost:.2g} m over the {last.time:g} s simulated, {lost / thinnest:.2g} of "
             f"the smallest film ({thinnest:.3g} m){'' if lost < 0.01 * thinnest else ': not negligible; raise lubricant.creep_viscosity'}"
             " (docs/physics.md section 21)")
+
+
+def band_note(scene, times, rows, reconnected_at: float) -> str:
+    """What a reconnect time rests on, "" if nothing beyond the model's ground: when the
+    pressurised film drained below h/sigma = 0.5 before the contact reconnected (validity flag
+    flow_factor_range), the drain ran through the percolation interpolation (docs/physics.md
+    section 15), whose exponent moves the time by tens of per cent there; the note says from
+    when, and which run shows how much."""
+    if not math.isfinite(reconnected_at):
+        return ""
+    below = [t for t, row in zip(times, rows) if "flow_factor_range" in row["validity"] and t <= reconnected_at]
+    if not below:
+        return ""
+    exponent = scene.roughness.percolation_exponent
+    effective_medium, percolation = PERCOLATION_ALTERNATIVES
+    other = percolation if exponent == effective_medium else effective_medium
+    return (f"reconnect_time rests on the pressure flow below h/sigma = 0.5: the pressurised film drained there from "
+            f"t = {below[0]:.4g} s, through the percolation interpolation (roughness.percolation_exponent = "
+            f"{exponent:g}, docs/physics.md section 15): run again with the exponent at {other:g} to see how much")
 
 
 def _to_stderr(line: str) -> None:
@@ -169,6 +193,10 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         notes.append(creep)
     notes.append(f"open threshold {threshold:g} ohm (interface.open_resistance, default {threshold:g})")
     notes.append(f"cavitation: {scene.effects.cavitation} (Swift-Stieber is not mass-conserving where a film re-forms)")
+    if history.rest_from is not None:
+        band = band_note(scene, series_t, rows, history.rest_from + recon)
+        if band:
+            notes.append(band)
     series = series_dataset(scene, series_t, rows, scalars, "; ".join(notes), peaks, opened)
     series.attrs["interrupted"] = int(failure.startswith("interrupted"))
     series.attrs["validity"], series.attrs["validity_notes"] = validity_over_time(series_t, rows)
