@@ -159,8 +159,9 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
     rows = [f"| {label} | {num(runs[name]['film'] * 1e6)} µm | {seconds(runs[name]['reconnect'])} | "
             f"{runs[name]['steps']} ({runs[name]['rejected']}) |" for name, (label, _, _) in RECONNECT.items()]
     r = {name: run["reconnect"] for name, run in runs.items()}
-    law_change, mesh_change = abs(r["table1_percolation"] / r["table1"] - 1.0), abs(r["table1_101"] / r["table1"] - 1.0)
-    more_or_less = "more" if law_change > mesh_change else "less"
+    law = {name: r[f"{name}_percolation"] / r[name] - 1.0 for name in PERCOLATION_ROWS}  # relative changes
+    mesh_change = r["table1_101"] / r["table1"] - 1.0
+    more_or_less = "more" if abs(law["table1"]) > abs(mesh_change) else "less"
     reconnect = "\n".join([
         "Measured (`scripts/doc_numbers.py --runs`, 51 × 51 nodes unless noted; stop from 1 m/s over 1 ms, "
         "reconnected at 2 × the resting resistance; steps of the whole run, "
@@ -179,10 +180,10 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
         f"(docs/physics.md section 15). With 2-D percolation's conductivity exponent {PERCOLATION_EXPONENT:g} "
         f"(`roughness.percolation_exponent`) instead of the effective medium's 1, the Table 1 stop reconnects at "
         f"{seconds(r['table1_percolation'])} instead of {seconds(r['table1'])} "
-        f"({percent(r['table1_percolation'] / r['table1'] - 1.0)}), the ISO VG 100 oil at "
-        f"{seconds(r['vg100_percolation'])} ({percent(r['vg100_percolation'] / r['vg100'] - 1.0)}), the 10 Pa s grease "
-        f"at {seconds(r['grease_percolation'])} ({percent(r['grease_percolation'] / r['grease'] - 1.0)}), while the "
-        f"101 × 101 mesh moves the Table 1 stop by {percent(r['table1_101'] / r['table1'] - 1.0)}: the squeeze's last "
+        f"({percent(law['table1'])}), the ISO VG 100 oil at "
+        f"{seconds(r['vg100_percolation'])} ({percent(law['vg100'])}), the 10 Pa s grease "
+        f"at {seconds(r['grease_percolation'])} ({percent(law['grease'])}), while the "
+        f"101 × 101 mesh moves the Table 1 stop by {percent(mesh_change)}: the squeeze's last "
         f"stage drains through that band, and the law there moves the reconnect time {more_or_less} than the mesh does.",
     ])
     mesh = ", ".join(seconds(lines[n]["reconnect"]) if n != 31 else

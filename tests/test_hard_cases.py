@@ -155,7 +155,7 @@ def test_hard_case_converges_and_says_so(case, outcomes):
 
 
 STEP_FAILURE = re.compile(r"NOT CONVERGED: time step at t = (\S+) s \(dt = (\S+) s\) did not converge "
-                          r"\(\d+ attempt\(s\) in a row(?:; below motion.tolerance [^)]*)?\): (.+)")
+                          r"\(\d+ attempt\(s\) in a row(?:; below motion.tolerance [^)]*)?(?:; \S+ s is the shortest step [^)]*)?\): (.+)")
 
 
 @pytest.mark.parametrize("case", list(CASES))

@@ -193,9 +193,10 @@ def percolating_coefficient_and_slope(h, sigma, viscosity, flow_factors=True, ex
     # below H = -40 Phi(H) and its slope are 0 to double precision: clipped there, a film far
     # out of range (a rejected iterate) cannot overflow the square
     H_lower = np.clip(H, -40.0, H_VALID)
-    share = np.maximum(ndtr(H_lower) - 0.5, 0.0) / reference
+    share = (ndtr(H_lower) - 0.5) / reference
     share_slope = _INV_SQRT_2PI * np.exp(-0.5 * H_lower**2) / reference
-    if exponent != 1.0:
+    if exponent != 1.0:  # a negative share (sealed, floored below) has no real power
+        share = np.maximum(share, 0.0)
         share_slope = exponent * share ** (exponent - 1.0) * share_slope
         share = share**exponent
     above = H >= H_VALID

@@ -61,7 +61,7 @@ MIN_STEP = 1.0e-15  # s: below this a failing step ends the run, flagged
 # attempts cannot pass is stuck (a shorter step makes the squeeze film stiffer, not easier).
 MAX_FAILED_IN_A_ROW = 6
 # A coupled solve that fails on a step shorter than motion.tolerance times the step the error
-# test last asked for (after a step its first attempt took) ends the run: such a step changes
+# test last asked for (after a step none of whose attempts failed its solve) ends the run: such a step changes
 # the solution by less than the tolerance allows of one step, so shortening it further is not
 # for accuracy, and it only stiffens the squeeze film (mu/dt): what failed is the solver, and
 # the run stops there cheaply instead of creeping on (issue 27: the R = 5 mm stop at 51 x 51).
@@ -380,7 +380,7 @@ class TimeIntegrator:
                                      "test last asked for, a step is not needed for accuracy and a shorter one only "
                                      "stiffens the squeeze film" if needless else "")
                             short += (f"; {shortest:.3g} s is the shortest step whose inertial force the force balance "
-                                      "resolves (motion.mass)" if unresolved else "")
+                                      "resolves with motion.mass" if unresolved else "")
                             failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
                                        f"({failed} attempt(s) in a row{short}): {outcome}")
                             break

@@ -106,14 +106,14 @@ def band_note(scene, times, rows, reconnected_at: float) -> str:
     when, and which run shows how much."""
     if not math.isfinite(reconnected_at):
         return ""
-    below = [t for t, row in zip(times, rows) if "flow_factor_range" in row["validity"] and t <= reconnected_at]
-    if not below:
+    since = next((t for t, row in zip(times, rows) if "flow_factor_range" in row["validity"]), math.inf)
+    if since > reconnected_at:
         return ""
     exponent = scene.roughness.percolation_exponent
     effective_medium, percolation = PERCOLATION_ALTERNATIVES
     other = percolation if exponent == effective_medium else effective_medium
     return (f"reconnect_time rests on the pressure flow below h/sigma = 0.5: the pressurised film drained there from "
-            f"t = {below[0]:.4g} s, through the percolation interpolation (roughness.percolation_exponent = "
+            f"t = {since:.4g} s, through the percolation interpolation (roughness.percolation_exponent = "
             f"{exponent:g}, docs/physics.md section 15): run again with the exponent at {other:g} to see how much")
 
 
