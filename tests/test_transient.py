@@ -311,7 +311,6 @@ def test_a_transient_reports_progress_and_keeps_its_series_when_terminated(tmp_p
 def test_a_stuck_step_gives_up_after_a_few_attempts(monkeypatch):
     """Every time step fails: the run stops after MAX_FAILED_IN_A_ROW attempts at one step,
     not after quartering dt down to 1e-15 s (55 attempts), and says so."""
-    from lubecontact.unsteady import integrator
 
     attempts = []
 
@@ -332,7 +331,6 @@ def test_a_creeping_run_stops_once_its_steps_are_far_below_what_accuracy_asks(mo
     steps accepted in between (the R = 5 mm stop at 51 x 51 crept so from 1e-5 to 1e-15 s
     steps over 48 failed solves). The run stops at the first failure on a step shorter than
     motion.tolerance times the step the error test last asked for, and says so."""
-    from lubecontact.unsteady import integrator
 
     real_step = integrator.TimeIntegrator.step
     attempts = []
@@ -382,7 +380,6 @@ def test_a_small_2d_mesh_steps_by_the_nested_solve_only(monkeypatch):
     """A 2-D mesh small enough for the dense Newton step (31 x 31 = 961 nodes) still steps
     by the nested solve alone (unsteady/integrator.step_solve): with the dense Newton first a
     Table 1 stop took 160 s against 8 s nested."""
-    from lubecontact.unsteady import integrator
 
     def refused(*args, **kwargs):
         raise AssertionError("a 2-D time step ran the dense Newton")
