@@ -193,28 +193,34 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         scale = system.matrix.diagonal()
         w = system.matrix @ p - system.rhs
         grease = yield_stress_law(model)
-        gap_slope = coefficient_slope = None  # nodal dh_T/dh and dk/dh, where a term needs them
-        if face_slopes is None or grease is not None:
-            _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)
+
+        def squeeze_slope():  # the cell's squeeze outflow dA c0 c (docs/physics.md section 14)
+            return squeeze_film_jacobian(mesh, unknown, model.squeeze.coefficient, content)
+
+        # the film slopes of the Jacobian are built when a Newton direction asks for them, not
+        # at the trial points of a line search (about four in five linearisations)
+        added = squeeze_slope if model.squeeze is not None else None
         if grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
-            grease_flow = yield_stress_outflow(mesh, system, pressure, k, h_t, gap_slope, scene.operating.speed,
-                                               grease, faces, face_slopes, coefficient_slope)
-            w, scale = grease_flow.outflow, grease_flow.scale
+            _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)  # nodal dh_T/dh, dk/dh
+            parts = yield_stress_outflow(mesh, system, pressure, k, h_t, gap_slope, scene.operating.speed, grease,
+                                         faces, face_slopes, coefficient_slope, added_outflow_film=added)
+            w, scale = parts.outflow, parts.scale
         if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
             r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
             exact = r_p
         else:
             r_p, d_a, d_b = fischer_burmeister(p, w / scale, smoothing)
             exact = fischer_burmeister(p, w / scale)[0] if smoothing > 0.0 else r_p
-        j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, gap_slope,
-                                           coefficient_slope)
-        if model.squeeze is not None:  # the cell's squeeze outflow dA c0 c (docs/physics.md section 14)
-            squeeze_slope = squeeze_film_jacobian(mesh, unknown, model.squeeze.coefficient, content)
-            j_wh = j_wh + squeeze_slope
-            if grease is not None:
-                grease_flow = dataclasses.replace(grease_flow, outflow_film=grease_flow.outflow_film + squeeze_slope)
+
+        def film_slopes():
+            """(dw/dh, dA_ii/dh) of the Newtonian outflow, built when a direction asks."""
+            nodal = (None, None) if face_slopes is not None else fluid_film(model, film, slopes=True)[2:]
+            j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, *nodal)
+            return (j_wh if added is None else j_wh + added()), j_sh
+
         slopes = (d_a, d_b)
-        parts = grease_flow if grease is not None else LinearOutflow(system.matrix, scale, w, j_wh, j_sh)
+        if grease is None:
+            parts = LinearOutflow(system.matrix, scale, w, film_slopes)
         # cavitated: the outflow, not the pressure, is the positive partner (a sealed node with
         # p = 0 and no outflow is full of fluid)
         cavitated = np.zeros(mesh.shape, dtype=bool)

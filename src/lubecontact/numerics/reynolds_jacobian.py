@@ -14,7 +14,9 @@ cell b -flux_f. The matrix J[i, j] = d w_i / d h_j has at most seven entries a r
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -91,20 +93,26 @@ def squeeze_film_jacobian(mesh, unknown, coefficient: float, content) -> sp.csr_
 class LinearOutflow:
     """The outflow w = A p - b of a Newtonian film (reynolds.reynolds_system) at one film, with
     what the one Newton's residual phi(p, w/A_ii) needs for its Jacobians (docs/physics.md
-    section 20): A, its diagonal A_ii, w, dw/dh and dA_ii/dh (outflow_film_jacobian, plus a
-    step's squeeze_film_jacobian)."""
+    section 20): A, its diagonal A_ii, w, and ``film_slopes``, which builds (dw/dh, dA_ii/dh)
+    (outflow_film_jacobian, plus a step's squeeze_film_jacobian) when a Newton direction asks
+    for them: the trial points of a line search need only the residual."""
 
     matrix: sp.csr_matrix
     scale: np.ndarray
     outflow: np.ndarray
-    outflow_film: sp.csr_matrix
-    scale_film: sp.csr_matrix
+    film_slopes: Callable[[], tuple[sp.csr_matrix, sp.csr_matrix]]
+
+    @cached_property
+    def film_jacobians(self) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """(dw/dh, dA_ii/dh), built once (a rebranched direction reuses them)."""
+        return self.film_slopes()
 
     def residual_jacobians(self, slope_pressure, slope_flow) -> tuple[sp.csc_matrix, sp.csr_matrix]:
         """(dR/dp, dR/dh) of R = phi(p, w/A_ii) whose slopes in its two arguments are
         ``slope_pressure`` and ``slope_flow`` (n,): D_a + D_b A/A_ii, and D_b d(w/A_ii)/dh with
         d(w/s) = dw/s - w ds/s^2."""
+        outflow_film, scale_film = self.film_jacobians
         flow = sp.diags(slope_flow / self.scale)
         pressure = (sp.diags(slope_pressure) + flow @ self.matrix).tocsc()
-        film = flow @ self.outflow_film - sp.diags(slope_flow * self.outflow / self.scale**2) @ self.scale_film
+        film = flow @ outflow_film - sp.diags(slope_flow * self.outflow / self.scale**2) @ scale_film
         return pressure, film.tocsr()

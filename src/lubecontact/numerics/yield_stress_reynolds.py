@@ -23,7 +23,9 @@ assembled face by face as a sparse matrix (reynolds_jacobian.assembled).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -34,30 +36,34 @@ from lubecontact.physics.percolation import face_films
 from lubecontact.physics.yield_stress_flow import YieldStressLaw, effective_coefficient
 
 
-@dataclass
+@dataclass(frozen=True)
 class YieldStressOutflow:
-    """The outflow w (m^3/s) and secant diagonal s (m^3/(Pa s)) of each unknown's cell, with
-    their derivatives in the unknown pressures ((n, n) matrices) and in the film at every
-    node ((n, nodes) matrices)."""
+    """The outflow w (m^3/s) and secant diagonal s (m^3/(Pa s)) of each unknown's cell, and
+    ``blocks``, which assembles their derivatives in the unknown pressures ((n, n) matrices)
+    and in the film at every node ((n, nodes) matrices) when a Newton direction asks for
+    them: the trial points of a line search need only w and s."""
 
     outflow: np.ndarray
     scale: np.ndarray
-    outflow_pressure: sp.csc_matrix
-    scale_pressure: sp.csr_matrix
-    outflow_film: sp.csr_matrix
-    scale_film: sp.csr_matrix
+    blocks: Callable[[], tuple[sp.csc_matrix, sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]]
+
+    @cached_property
+    def jacobian_blocks(self) -> tuple[sp.csc_matrix, sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+        """(dw/dp, ds/dp, dw/dh, ds/dh), assembled once (a rebranched direction reuses them)."""
+        return self.blocks()
 
     def residual_jacobians(self, slope_pressure, slope_flow) -> tuple[sp.csc_matrix, sp.csr_matrix]:
         """(dR/dp, dR/dh) of the residual R = phi(p, w/s) whose slopes in its two arguments
         are ``slope_pressure`` and ``slope_flow`` (n,) (complementarity.fischer_burmeister),
         with d(w/s) = dw/s - w ds/s^2."""
+        outflow_pressure, scale_pressure, outflow_film, scale_film = self.jacobian_blocks
         flow = sp.diags(slope_flow / self.scale)
         # (w/s)/s, not w/s^2: at Newton iterates far from the answer s and w reach 1e192 and
         # 1e198 (measured on a 1 N stop with a 5 kPa Bingham grease), s^2 overflows, while
         # w/s stays a pressure (1e3-1e6 Pa)
         level = sp.diags(slope_flow * (self.outflow / self.scale) / self.scale)
-        pressure = sp.diags(slope_pressure) + flow @ self.outflow_pressure - level @ self.scale_pressure
-        return pressure.tocsc(), (flow @ self.outflow_film - level @ self.scale_film).tocsr()
+        pressure = sp.diags(slope_pressure) + flow @ outflow_pressure - level @ scale_pressure
+        return pressure.tocsc(), (flow @ outflow_film - level @ scale_film).tocsr()
 
 
 def reduction_factor(gradient, content, law: YieldStressLaw):
@@ -68,13 +74,14 @@ def reduction_factor(gradient, content, law: YieldStressLaw):
 
 
 def yield_stress_outflow(mesh, system: ReynoldsSystem, pressure, coefficient, content, content_slope, speed,
-                         law: YieldStressLaw, faces=None, face_slopes=None, coefficient_slope=None
-                         ) -> YieldStressOutflow:
+                         law: YieldStressLaw, faces=None, face_slopes=None, coefficient_slope=None,
+                         added_outflow_film: Callable[[], sp.csr_matrix] | None = None) -> YieldStressOutflow:
     """The grease's outflow and Jacobians (module docstring) at ``pressure`` (ny, nx, Pa,
     zero off the unknowns). ``system``: reynolds.reynolds_system of the same film (its
     unknowns and right-hand side b); ``coefficient`` k and ``content`` h_T (ny, nx) and
     dh_T/dh (``content_slope``) at the nodes; ``faces``/``face_slopes`` the face values of
-    rough surfaces (percolation.FaceFilm), else the nodal ``coefficient_slope`` dk/dh."""
+    rough surfaces (percolation.FaceFilm), else the nodal ``coefficient_slope`` dk/dh;
+    ``added_outflow_film``: builds a further dw/dh (a time step's squeeze outflow)."""
     ny, nx = mesh.shape
     unknown = system.unknown
     flat = np.arange(ny * nx).reshape(mesh.shape)
@@ -110,11 +117,12 @@ def yield_stress_outflow(mesh, system: ReynoldsSystem, pressure, coefficient, co
     couette = 0.5 * speed * mesh.dy
     flow_h.append((flat[:, :-1], flat[:, 1:], 0.5 * couette * dg_a, 0.5 * couette * dg_b, 1.0, -1.0))
     columns = flat[unknown]
-    return YieldStressOutflow(
-        outflow=net[unknown] - system.rhs,
-        scale=scale[unknown],
-        outflow_pressure=assembled(mesh, unknown, flow_p)[:, columns].tocsc(),
-        scale_pressure=assembled(mesh, unknown, scale_p)[:, columns],
-        outflow_film=assembled(mesh, unknown, flow_h),
-        scale_film=assembled(mesh, unknown, scale_h),
-    )
+
+    def blocks():
+        outflow_film = assembled(mesh, unknown, flow_h)
+        if added_outflow_film is not None:
+            outflow_film = outflow_film + added_outflow_film()
+        return (assembled(mesh, unknown, flow_p)[:, columns].tocsc(), assembled(mesh, unknown, scale_p)[:, columns],
+                outflow_film, assembled(mesh, unknown, scale_h))
+
+    return YieldStressOutflow(outflow=net[unknown] - system.rhs, scale=scale[unknown], blocks=blocks)
