@@ -85,23 +85,34 @@ class ControlVolumeMean:
 
 def _half_cell(start: np.ndarray, neighbour: np.ndarray, law, kink: float):
     """(mean, d mean/d start, d mean/d neighbour) of law over the film from ``start`` to the
-    face's film (start + neighbour)/2, linear in between, split at ``kink``."""
+    face's film (start + neighbour)/2, linear in between, split at ``kink``: the piece beyond
+    the kink is evaluated only where the half cell crosses it (elsewhere it has no length)."""
     face = 0.5 * (start + neighbour)
     crossing = (start - kink) * (face - kink) < 0.0
     split = np.where(crossing, (kink - start) / np.where(crossing, face - start, 1.0), 1.0)
     mean = np.zeros_like(start)
     d_start = np.zeros_like(start)
     d_neighbour = np.zeros_like(start)
-    for low, high in ((0.0, split), (split, 1.0)):
-        half = 0.5 * (high - low)
-        for xi, weight in zip(_XI, _WEIGHTS):
-            u = low + half * (1.0 + xi)
-            g, slope = law(start + u * (face - start))
-            w = weight * half
-            mean += w * g
-            d_start += w * slope * (1.0 - 0.5 * u)
-            d_neighbour += w * slope * 0.5 * u
+    _add_piece((mean, d_start, d_neighbour), start, face, 0.0, split, law, Ellipsis)
+    if crossing.any():
+        _add_piece((mean, d_start, d_neighbour), start, face, split, 1.0, law, crossing)
     return mean, d_start, d_neighbour
+
+
+def _add_piece(sums, start, face, low, high, law, where):
+    """Add to ``sums`` (mean, d/d start, d/d neighbour) at ``where`` (a mask, or Ellipsis for
+    every node) the Gauss-Legendre quadrature of the piece u in [low, high] (scalars or arrays
+    like ``start``) of the half cell h(u) = start + u (face - start)."""
+    start, face = start[where], face[where]
+    low = low[where] if np.ndim(low) else low
+    high = high[where] if np.ndim(high) else high
+    half = 0.5 * (high - low)
+    for xi, weight in zip(_XI, _WEIGHTS):
+        u = low + half * (1.0 + xi)
+        g, slope = law(start + u * (face - start))
+        w = weight * half
+        for total, term in zip(sums, (w * g, w * slope * (1.0 - 0.5 * u), w * slope * 0.5 * u)):
+            total[where] += term
 
 
 def _axis_mean(film: np.ndarray, law, kink: float):
