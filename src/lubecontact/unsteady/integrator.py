@@ -65,6 +65,16 @@ MAX_FAILED_IN_A_ROW = 6
 # the solution by less than the tolerance allows of one step, so shortening it further is not
 # for accuracy, and it only stiffens the squeeze film (mu/dt): what failed is the solver, and
 # the run stops there cheaply instead of creeping on (issue 27: the R = 5 mm stop at 51 x 51).
+# At rest (after the motion's stop), a coupled solve that failed on a step L grown beyond the
+# last accepted one, whose retry at L/4 then passed (a step grown too far), bounds the next
+# steps: they stay below half the shortest such L, and that bound doubles with each accepted
+# step that reaches it (StepCeiling). Without it a step grown fourfold from one that passed fails again, and a
+# grease at rest, whose plug leaves the pressure undetermined as the squeeze term weakens
+# (c0 ~ 1/dt), alternated failures and quarter steps from 1 ms to 5 s: 29 failed solves of
+# 107 on the Bingham stop, three quarters of its time. Where the shorter retry fails too the
+# failure was not the step's length (a stiff squeeze film also fails at short steps: the
+# 100 Pa s fretting of tests/test_hard_cases.py) and sets no bound; in motion the failures
+# are not a length either (that fretting, bounded so, crept to 5e-11 s steps and failed).
 # A step's coupled solve has converged when its last film correction is below this fraction
 # of the step's error weight at every node (Squeeze.settled): the nonlinear error then adds at
 # most a tenth of the tolerance to the step's local error. SUNDIALS' CVODE takes the same
@@ -97,6 +107,32 @@ class Squeeze:
         relative change (solver.tolerance), which a stiff step's iteration may never reach
         (the 10 and 100 Pa s oscillations of tests/test_hard_cases.py failed on it)."""
         return bool(np.all(np.abs(correction) <= NONLINEAR_FRACTION * self.error_weight(film)))
+
+
+@dataclass
+class StepCeiling:
+    """The longest step the coupled solve is trusted with: half the shortest step grown beyond
+    the last accepted one whose solve failed where the retry passed, doubled by every accepted
+    step that reaches it (a bisection in log(dt) between the quarter step that passed and the
+    step that failed, which follows a solver limit that grows with time); none before such a
+    failure."""
+
+    floor: float = 0.0  # s: never bounded below this step (a contact's mass: Dynamics.shortest_step)
+    failed: float = math.inf  # s: the bound's step, twice the longest step allowed
+    suspect: float | None = None  # s: a grown step whose solve failed, until its retry ends
+
+    def limit(self, dt: float) -> float:
+        return min(dt, max(0.5 * self.failed, self.floor))
+
+    def solve_failed(self, dt: float, last: float):
+        """A solve failed on a step dt after an accepted step of length ``last``."""
+        self.suspect = dt if dt > last and self.suspect is None else None
+
+    def accepted(self, dt: float):
+        if self.suspect is not None:
+            self.failed, self.suspect = min(self.failed, self.suspect), None
+        elif dt >= 0.5 * self.failed * (1.0 - 1e-12):  # reached, up to the rounding of (t + dt) - t
+            self.failed *= 2.0
 
 
 def bdf_coefficients(steps: list[float]) -> list[float]:
@@ -357,6 +393,7 @@ class TimeIntegrator:
         breaks.append(history.end)
         dt, order, failure, failed = first, 1, "", 0
         asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
+        ceiling = StepCeiling(floor=shortest)
         started = time.perf_counter()
         decade = FIRST_STEP  # the next power of ten of simulated time to report
         bar = tqdm(total=history.end, unit="s", desc="transient", disable=not progress,
@@ -369,10 +406,13 @@ class TimeIntegrator:
                     if history.rest_from is None or t < history.rest_from:
                         dt = min(dt, history.max_step)
                     dt = min(dt, self.base.max_step(t))
+                    dt = ceiling.limit(dt)
                     t_new = target if t + 1.1 * dt >= target else t + dt
                     level, outcome = self.step(levels, t_new, order)
                     if level is None:
                         failed, solve_failed = failed + 1, True
+                        if history.rest_from is not None and t >= history.rest_from:
+                            ceiling.solve_failed(t_new - t, t - levels[-2].time)
                         needless = asked is not None and t_new - t < self.tolerance * asked
                         unresolved = t_new - t <= shortest
                         if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW or needless or unresolved:
@@ -394,6 +434,7 @@ class TimeIntegrator:
                         dt = max((t_new - t) * max(SHRINK, min(factor, 1.0)), shortest)
                         continue
                     levels.append(level)
+                    ceiling.accepted(t_new - t)
                     bar.update(t_new - t)
                     bar.set_postfix_str(f"dt = {t_new - t:.2g} s, steps {len(levels) - 2}")
                     while report is not None and t_new >= decade:
