@@ -12,7 +12,8 @@ import pytest
 import lubecontact as lc
 from lubecontact.model import coupling
 from lubecontact.unsteady import integrator
-from lubecontact.unsteady.integrator import bdf_coefficients, error_fraction
+from lubecontact.numerics.control_volume import control_volume_mean
+from lubecontact.unsteady.integrator import bdf_coefficients, error_fraction, error_norm
 from lubecontact.unsteady.motion import SpeedHistory
 from lubecontact.unsteady.series import cycle_peaks, reconnect_time
 
@@ -81,6 +82,23 @@ def test_bdf2_coefficients_and_error_constants_at_constant_step():
     assert bdf_coefficients([0.1, 0.1]) == pytest.approx([15.0, -20.0, 5.0])
     assert error_fraction([0.1, 0.1, 0.1]) == pytest.approx(2 / 11)
     assert error_fraction([0.1, 0.1]) == pytest.approx(1 / 3)
+
+
+def test_a_cell_that_seals_leaves_only_its_own_step_out_of_the_error_norm():
+    # the content frozen below h = 0 (slope 0 there, 1/2 above: a stand-in with the kink)
+    def frozen(h):
+        return np.maximum(h, 0.0) / 2.0, np.where(h > 0.0, 0.5, 0.0)
+
+    # a cell is sealed when its node and both faces, (h_i + h_j)/2, are at or below the kink
+    sealed = control_volume_mean(np.array([[1.0, -1.0, 1.0]]), frozen, 0.0).own == 0.0
+    draining = control_volume_mean(np.array([[1.0, -1.0, 1.2]]), frozen, 0.0).own == 0.0
+    assert sealed.tolist() == [[False, True, False]] and not draining.any()
+    scaled = np.array([[0.5, 100.0, 0.5]])
+    # the step in which the middle cell seals: its jump is not counted, the RMS is still over all nodes
+    assert error_norm(scaled, sealed, draining) == pytest.approx(math.sqrt(0.5 / 3))
+    # sealed before and after, or opening: counted
+    assert error_norm(scaled, sealed, sealed) == pytest.approx(math.sqrt((0.5 + 100.0**2) / 3))
+    assert error_norm(scaled, draining, sealed) == pytest.approx(math.sqrt((0.5 + 100.0**2) / 3))
 
 
 def test_rigid_smooth_cylinder_follows_the_analytic_squeeze_law():

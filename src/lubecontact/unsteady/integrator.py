@@ -23,7 +23,8 @@ BDF's local error is -D_p/c0 h^{(p+1)}; both constants are computed for the actu
 ``tolerance`` times max(|h|, floor) (floor: sigma with roughness, FILM_FLOOR without), has
 a root mean square over the nodes below 1 (the weighted RMS norm of ODE codes such as
 SUNDIALS: a sharp change in one node's history does not force the whole contact to tiny
-steps), and the
+steps; error_norm). A node whose cell sealed within the step is left out of that step's
+norm (error_norm): its film has become an algebraic variable, which may jump. The
 next step is scaled by 0.9 E^{-1/(p+1)} within [SHRINK, GROWTH]: steps are short while the
 film moves and grow geometrically (log-spaced) as it settles. Steps land on the motion's
 breakpoints. A step's coupled solve stops on the same weight: its last film correction
@@ -160,6 +161,27 @@ def error_fraction(steps: list[float]) -> float:
     return abs(corrector / (corrector - predictor))
 
 
+def error_norm(scaled_error: np.ndarray, sealed: np.ndarray, sealed_before: np.ndarray) -> float:
+    """The weighted RMS norm of a step's local error (``scaled_error``: estimate / weight at
+    each node), over all nodes, with the nodes whose cell sealed within the step counted as 0.
+
+    A cell is sealed when its content no longer depends on its own film
+    (control_volume.ControlVolumeMean.own == 0: the film is below the frozen content's kink
+    over the whole cell, docs/physics.md section 14). Its film is then not a state of the
+    squeeze equation but an algebraic variable, set by the elastic balance, and as the cell
+    seals it jumps: a pocket that still drained through the percolation floor held its
+    pressure above its neighbours' only while a sliver of its cell stayed above the kink,
+    and the film of that sliver reaches the kink in finite time (as the square root of the
+    time left), where the pressure falls to the neighbours' at once. No step is short enough
+    to follow a jump, so the film test rejected every step there, down to picoseconds
+    (tests/test_hard_cases.py, the tight stop to its reconnect). An ODE code leaves algebraic
+    components out of its error test (SUNDIALS' IDA, its suppressalg option; Hindmarsh et al.
+    2005, ACM TOMS 31:363); here only on the step in which a cell seals: from the next step on
+    the sealed node's film is smooth again and counts."""
+    counted = np.where(sealed & ~sealed_before, 0.0, scaled_error)
+    return float(np.sqrt(np.mean(counted**2)))
+
+
 def lagrange(times: list[float], values: list, t: float):
     """Lagrange polynomial through (times, values) evaluated at t (values: numbers or arrays).
     Beyond the last time it is the predictor of a step; between the times it is the
@@ -181,7 +203,8 @@ class Level:
     time: float
     speed: float
     state: object  # model/model.State
-    expected_gap: np.ndarray  # h_T used by the squeeze history
+    expected_gap: np.ndarray  # the cells' content c used by the squeeze history, m
+    sealed: np.ndarray  # cells whose content no longer depends on their own film (error_norm)
     model: Model  # the model of the step (its scene carries the speed)
     diagnostics: Diagnostics
     order: int = 0
@@ -307,10 +330,13 @@ class TimeIntegrator:
         self.rejected = 0
         self.fallback = NewtonFallback()
 
-    def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
-        """The content the squeeze term differentiates in time: each cell's
-        (model/fluid_film.squeeze_content)."""
-        return squeeze_content(model, film).value
+    @staticmethod
+    def _content(model: Model, film: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(content, sealed): the content the squeeze term differentiates in time, each
+        cell's (model/fluid_film.squeeze_content), and the sealed cells, whose content no
+        longer depends on their own film (error_norm)."""
+        content = squeeze_content(model, film)
+        return content.value, content.own == 0.0
 
     def start(self) -> Level:
         """The steady state at t = 0 (the motion's initial speed)."""
@@ -318,7 +344,7 @@ class TimeIntegrator:
         state, diag, _ = steady_solve(model)
         self.coupled_solves += 1
         transient = dataclasses.replace(model, hydrodynamic=bool(self.scene.effects.hydrodynamics))
-        return Level(0.0, self.history.initial_speed(), state, self._gap(transient, state.film), model, diag)
+        return Level(0.0, self.history.initial_speed(), state, *self._content(transient, state.film), model, diag)
 
     def step(self, levels: list[Level], t_new: float, order: int):
         """Coupled solve at t_new with BDF_order; (level, error/tolerance) or (None, reason)."""
@@ -358,11 +384,12 @@ class TimeIntegrator:
             return None, diag.failure or "coupled solve did not meet its tolerances"
         predicted = lagrange(times, [lv.state.film for lv in used], t_new)
         fraction = error_fraction([dt] + [lv.time - lv_prev.time for lv, lv_prev in zip(used[::-1], used[::-1][1:])])
-        error = float(np.sqrt(np.mean((fraction * (state.film - predicted) / model.squeeze.error_weight(state.film)) ** 2)))
-        gap = self._gap(model, state.film)
+        gap, sealed = self._content(model, state.film)
+        error = error_norm(fraction * (state.film - predicted) / model.squeeze.error_weight(state.film), sealed,
+                           last.sealed)
         if state.reynolds is not None:
             state.reynolds.factor = None  # LU factors: not needed after the step, megabytes each
-        level = Level(t_new, speed, state, gap, model, diag, order, error, model.squeeze.rate(gap),
+        level = Level(t_new, speed, state, gap, sealed, model, diag, order, error, model.squeeze.rate(gap),
                       0.0 if load is None else load.velocity(state.z))
         return level, error
 
