@@ -3,6 +3,7 @@ analytic squeeze law of a rigid smooth cylinder (docs/physics.md section 14), th
 the limit of shrinking ramps, the integrator's order, the discrete volume balance and
 trends argued from the equations. Line mode and coarse meshes keep them cheap."""
 
+import dataclasses
 import math
 import re
 
@@ -372,6 +373,36 @@ def test_a_creeping_run_stops_once_its_steps_are_far_below_what_accuracy_asks(mo
     # the first failure below the limit ends the run; a creep to MIN_STEP took ~45 attempts
     assert failed[-1] < 1.01 * limit and min(failed[:-1]) > 0.99 * limit
     assert len(attempts) < 20
+
+
+def test_where_no_shorter_step_converges_the_least_inaccurate_rejected_step_is_kept_and_named(monkeypatch):
+    """At one instant the error test rejects two converged steps (errors 40 and 20 times the
+    tolerance) and every shorter step's solve fails, as where a pocket seals: the run goes on
+    with the step of error 20, keeps that error in the series and names it in the notes."""
+
+    real_step = integrator.TimeIntegrator.step
+    sealing = {"at": None, "attempts": 0}
+
+    def step(self, levels, t_new, order):
+        t = levels[-1].time
+        if t < 1e-4 or sealing["at"] not in (None, t):
+            return real_step(self, levels, t_new, order)
+        sealing["at"] = t
+        sealing["attempts"] += 1
+        if sealing["attempts"] > 2:
+            return None, "forced failure"
+        level, _ = real_step(self, levels, t_new, order)
+        error = 40.0 / sealing["attempts"]
+        return dataclasses.replace(level, error=error), error
+
+    monkeypatch.setattr(integrator.TimeIntegrator, "step", step)
+    scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.02})
+    series = lc.transient(scene, progress=False)
+    errors = series["error_estimate"].values
+    assert series["converged"].item() == 1 and np.count_nonzero(errors > 1.0) == 1
+    assert errors.max() == 20.0 and series["time"].values[np.argmax(errors) - 1] == sealing["at"]
+    assert "1 step(s) accepted above the error test" in series.attrs["notes"]
+    assert "20 times the tolerance" in series.attrs["notes"]
 
 
 def test_a_solver_limit_on_a_grease_at_rest_costs_one_failed_solve_per_two_accepted_steps(monkeypatch):
