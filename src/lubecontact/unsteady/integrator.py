@@ -77,7 +77,7 @@ MAX_FAILED_IN_A_ROW = 6
 # 10 Pa s oscillation of tests/test_hard_cases.py crept into failure so), nor in motion
 # (the 100 Pa s fretting did), nor with a Newtonian film: bounded so, the 201 x 21 Table 1
 # stop of the accuracy study failed at t = 10.6 ms, where the tight line stop meets the
-# sliding mode of a sealed pocket (docs/DESIGN.md "Hard cases", tight stop to its reconnect).
+# impasse of a sealing pocket (docs/DESIGN.md "Hard cases", tight stop to its reconnect).
 # A step's coupled solve has converged when its last film correction is below this fraction
 # of the step's error weight at every node (Squeeze.settled): the nonlinear error then adds at
 # most a tenth of the tolerance to the step's local error. SUNDIALS' CVODE takes the same
