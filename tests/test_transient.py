@@ -346,6 +346,25 @@ def test_a_stuck_step_gives_up_after_a_few_attempts(monkeypatch):
     assert f"({integrator.MAX_FAILED_IN_A_ROW} attempt(s) in a row): forced failure" in series.attrs["notes"]
 
 
+def test_a_singular_factor_in_a_step_is_a_failed_solve_not_a_crash(monkeypatch):
+    """SuperLU raises RuntimeError on an exactly singular factor. Inside a step's nested
+    solve it is a failed nested solve (the Newton's answer stands, or the step is retried
+    shorter), not an exception that ends the run."""
+    real_solve = integrator.coupled_solve
+    raised = []
+
+    def singular_once(model, initial):
+        if model.squeeze is not None and not raised:
+            raised.append(True)
+            raise RuntimeError("Factor is exactly singular")
+        return real_solve(model, initial)
+
+    monkeypatch.setattr(integrator, "coupled_solve", singular_once)
+    scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.02})
+    series = lc.transient(scene, progress=False)
+    assert raised and series["converged"].item() == 1
+
+
 def test_a_creeping_run_stops_once_its_steps_are_far_below_what_accuracy_asks(monkeypatch):
     """From t = 1e-5 s on, two of every three attempts fail: dt shrinks fourfold a cycle, with
     steps accepted in between (the R = 5 mm stop at 51 x 51 crept so from 1e-5 to 1e-15 s
