@@ -3,7 +3,6 @@ analytic squeeze law of a rigid smooth cylinder (docs/physics.md section 14), th
 the limit of shrinking ramps, the integrator's order, the discrete volume balance and
 trends argued from the equations. Line mode and coarse meshes keep them cheap."""
 
-import dataclasses
 import math
 import re
 
@@ -13,8 +12,7 @@ import pytest
 import lubecontact as lc
 from lubecontact.model import coupling
 from lubecontact.unsteady import integrator
-from lubecontact.numerics.control_volume import control_volume_mean
-from lubecontact.unsteady.integrator import bdf_coefficients, error_fraction, error_norm
+from lubecontact.unsteady.integrator import bdf_coefficients, error_fraction
 from lubecontact.unsteady.motion import SpeedHistory
 from lubecontact.unsteady.series import cycle_peaks, reconnect_time
 
@@ -85,23 +83,6 @@ def test_bdf2_coefficients_and_error_constants_at_constant_step():
     assert error_fraction([0.1, 0.1]) == pytest.approx(1 / 3)
 
 
-def test_a_cell_that_seals_leaves_only_its_own_step_out_of_the_error_norm():
-    # the content frozen below h = 0 (slope 0 there, 1/2 above: a stand-in with the kink)
-    def frozen(h):
-        return np.maximum(h, 0.0) / 2.0, np.where(h > 0.0, 0.5, 0.0)
-
-    # a cell is sealed when its node and both faces, (h_i + h_j)/2, are at or below the kink
-    sealed = control_volume_mean(np.array([[1.0, -1.0, 1.0]]), frozen, 0.0).own == 0.0
-    draining = control_volume_mean(np.array([[1.0, -1.0, 1.2]]), frozen, 0.0).own == 0.0
-    assert sealed.tolist() == [[False, True, False]] and not draining.any()
-    scaled = np.array([[0.5, 100.0, 0.5]])
-    # the step in which the middle cell seals: its jump is not counted, the RMS is still over all nodes
-    assert error_norm(scaled, sealed, draining) == pytest.approx(math.sqrt(0.5 / 3))
-    # sealed before and after, or opening: counted
-    assert error_norm(scaled, sealed, sealed) == pytest.approx(math.sqrt((0.5 + 100.0**2) / 3))
-    assert error_norm(scaled, draining, sealed) == pytest.approx(math.sqrt((0.5 + 100.0**2) / 3))
-
-
 def test_rigid_smooth_cylinder_follows_the_analytic_squeeze_law():
     # docs/physics.md section 14: h0^(-1/2)(t) = h_i^(-1/2) + w' t / (6 sqrt(2) pi mu R^(3/2)) from the
     # end of the ramp, where the film left by 1 m/s sliding (0.41 um) has 2 % of its load left
@@ -156,9 +137,8 @@ def test_time_step_convergence_order_on_the_reconnect_time(rough_stops):
 
 
 @pytest.mark.xfail(strict=True, reason="issue 28: since the squeeze term takes each cell's content the "
-                   "default tolerance (1e-3) is 7.1 % short of 1e-5 on this rigid 31-node stop (2.9 % with nodal "
-                   "content, whose answer was 38 % short of the converged mesh's, against 3 % now); 5e-4 gives "
-                   "4.7 %, 1e-4 1.1 % (measured in the sixteenth session)")
+                   "default tolerance (1e-3) is 7.7 % short of 1e-5 on this rigid 31-node stop (2.9 % with nodal "
+                   "content, whose answer was 38 % short of the converged mesh's, against 3 % now); 5e-4 gives 3.5 %")
 def test_the_default_tolerance_is_within_five_percent_on_the_reconnect_time(rough_stops):
     reference = rough_stops[1e-5]["reconnect_time"].item()
     assert abs(rough_stops[1e-3]["reconnect_time"].item() - reference) < 0.05 * reference
@@ -393,36 +373,6 @@ def test_a_creeping_run_stops_once_its_steps_are_far_below_what_accuracy_asks(mo
     # the first failure below the limit ends the run; a creep to MIN_STEP took ~45 attempts
     assert failed[-1] < 1.01 * limit and min(failed[:-1]) > 0.99 * limit
     assert len(attempts) < 20
-
-
-def test_where_no_shorter_step_converges_the_least_inaccurate_rejected_step_is_kept_and_named(monkeypatch):
-    """At one instant the error test rejects two converged steps (errors 40 and 20 times the
-    tolerance) and every shorter step's solve fails, as where a pocket seals: the run goes on
-    with the step of error 20, keeps that error in the series and names it in the notes."""
-
-    real_step = integrator.TimeIntegrator.step
-    sealing = {"at": None, "attempts": 0}
-
-    def step(self, levels, t_new, order):
-        t = levels[-1].time
-        if t < 1e-4 or sealing["at"] not in (None, t):
-            return real_step(self, levels, t_new, order)
-        sealing["at"] = t
-        sealing["attempts"] += 1
-        if sealing["attempts"] > 2:
-            return None, "forced failure"
-        level, _ = real_step(self, levels, t_new, order)
-        error = 40.0 / sealing["attempts"]
-        return dataclasses.replace(level, error=error), error
-
-    monkeypatch.setattr(integrator.TimeIntegrator, "step", step)
-    scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.02})
-    series = lc.transient(scene, progress=False)
-    errors = series["error_estimate"].values
-    assert series["converged"].item() == 1 and np.count_nonzero(errors > 1.0) == 1
-    assert errors.max() == 20.0 and series["time"].values[np.argmax(errors) - 1] == sealing["at"]
-    assert "1 step(s) accepted above the error test" in series.attrs["notes"]
-    assert "20 times the tolerance" in series.attrs["notes"]
 
 
 def test_a_solver_limit_on_a_grease_at_rest_costs_one_failed_solve_per_two_accepted_steps(monkeypatch):

@@ -23,8 +23,7 @@ BDF's local error is -D_p/c0 h^{(p+1)}; both constants are computed for the actu
 ``tolerance`` times max(|h|, floor) (floor: sigma with roughness, FILM_FLOOR without), has
 a root mean square over the nodes below 1 (the weighted RMS norm of ODE codes such as
 SUNDIALS: a sharp change in one node's history does not force the whole contact to tiny
-steps; error_norm). A node whose cell sealed within the step is left out of that step's
-norm (error_norm): its film has become an algebraic variable, which may jump. The
+steps), and the
 next step is scaled by 0.9 E^{-1/(p+1)} within [SHRINK, GROWTH]: steps are short while the
 film moves and grow geometrically (log-spaced) as it settles. Steps land on the motion's
 breakpoints. A step's coupled solve stops on the same weight: its last film correction
@@ -84,15 +83,6 @@ MAX_FAILED_IN_A_ROW = 6
 # fraction (its nonlinear convergence coefficient, 0.1; Hindmarsh et al. 2005, ACM TOMS
 # 31:363, section 2.1).
 NONLINEAR_FRACTION = 0.1
-# Where the error test asks for steps on which no solve converges, the run does not stop if
-# the test rejected a converged step at the same instant: it goes on with the least
-# inaccurate of them, its error kept in the series (error_estimate > 1) and named in the
-# notes (transient.overshoot_note). Seen where a pocket seals (error_norm): the state past
-# the jump is found by long steps, whose squeeze term is soft, and missed by short ones,
-# whose squeeze term (~1/dt) weighs the content's curvature near the kink, ~1/h at a
-# node beside it, beyond the Newton's reach. The Table 1 line stop at 1e-5 went on so with
-# one step of 11.5 times the tolerance on 29 nodes (t = 15.0 ms) and two of up to 20.1 on 51
-# (t = 10.06 ms), where it failed (docs/physics.md section 14).
 
 
 @dataclass
@@ -170,27 +160,6 @@ def error_fraction(steps: list[float]) -> float:
     return abs(corrector / (corrector - predictor))
 
 
-def error_norm(scaled_error: np.ndarray, sealed: np.ndarray, sealed_before: np.ndarray) -> float:
-    """The weighted RMS norm of a step's local error (``scaled_error``: estimate / weight at
-    each node), over all nodes, with the nodes whose cell sealed within the step counted as 0.
-
-    A cell is sealed when its content no longer depends on its own film
-    (control_volume.ControlVolumeMean.own == 0: the film is below the frozen content's kink
-    over the whole cell, docs/physics.md section 14). Its film is then not a state of the
-    squeeze equation but an algebraic variable, set by the elastic balance, and as the cell
-    seals it jumps: a pocket that still drained through the percolation floor held its
-    pressure above its neighbours' only while a sliver of its cell stayed above the kink,
-    and the film of that sliver reaches the kink in finite time (as the square root of the
-    time left), where the pressure falls to the neighbours' at once. No step is short enough
-    to follow a jump, so the film test rejected every step there, down to picoseconds
-    (tests/test_hard_cases.py, the tight stop to its reconnect). An ODE code leaves algebraic
-    components out of its error test (SUNDIALS' IDA, its suppressalg option; Hindmarsh et al.
-    2005, ACM TOMS 31:363); here only on the step in which a cell seals: from the next step on
-    the sealed node's film is smooth again and counts."""
-    counted = np.where(sealed & ~sealed_before, 0.0, scaled_error)
-    return float(np.sqrt(np.mean(counted**2)))
-
-
 def lagrange(times: list[float], values: list, t: float):
     """Lagrange polynomial through (times, values) evaluated at t (values: numbers or arrays).
     Beyond the last time it is the predictor of a step; between the times it is the
@@ -212,8 +181,7 @@ class Level:
     time: float
     speed: float
     state: object  # model/model.State
-    expected_gap: np.ndarray  # the cells' content c used by the squeeze history, m
-    sealed: np.ndarray  # cells whose content no longer depends on their own film (error_norm)
+    expected_gap: np.ndarray  # h_T used by the squeeze history
     model: Model  # the model of the step (its scene carries the speed)
     diagnostics: Diagnostics
     order: int = 0
@@ -284,9 +252,10 @@ def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
 def nested_step(model: Model, initial: WarmStart):
     """(state, diagnostics, failure message) of the nested coupled solve of a step; state
     and diagnostics None where it raised: a SolveError, or SuperLU's RuntimeError on a
-    singular factor (seen on a step of 16 times the one the error test asked for, at a seal
-    of the Table 1 51-node line stop at 1e-5), which the step's retry then answers as any
-    failed solve, as the Newton's (monolithic_newton.newton) does."""
+    singular factor (seen in an experiment on a step of 16 times the one the error test
+    asked for, where a pocket seals on the Table 1 51-node line stop at 1e-5), which the
+    step's retry then answers as any failed solve, as the Newton's (monolithic_newton.newton)
+    does."""
     try:
         state, diag = coupled_solve(model, initial)
     except RuntimeError as err:  # SolveError is one
@@ -342,13 +311,10 @@ class TimeIntegrator:
         self.rejected = 0
         self.fallback = NewtonFallback()
 
-    @staticmethod
-    def _content(model: Model, film: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(content, sealed): the content the squeeze term differentiates in time, each
-        cell's (model/fluid_film.squeeze_content), and the sealed cells, whose content no
-        longer depends on their own film (error_norm)."""
-        content = squeeze_content(model, film)
-        return content.value, content.own == 0.0
+    def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
+        """The content the squeeze term differentiates in time: each cell's
+        (model/fluid_film.squeeze_content)."""
+        return squeeze_content(model, film).value
 
     def start(self) -> Level:
         """The steady state at t = 0 (the motion's initial speed)."""
@@ -356,7 +322,7 @@ class TimeIntegrator:
         state, diag, _ = steady_solve(model)
         self.coupled_solves += 1
         transient = dataclasses.replace(model, hydrodynamic=bool(self.scene.effects.hydrodynamics))
-        return Level(0.0, self.history.initial_speed(), state, *self._content(transient, state.film), model, diag)
+        return Level(0.0, self.history.initial_speed(), state, self._gap(transient, state.film), model, diag)
 
     def step(self, levels: list[Level], t_new: float, order: int):
         """Coupled solve at t_new with BDF_order; (level, error/tolerance) or (None, reason)."""
@@ -396,12 +362,11 @@ class TimeIntegrator:
             return None, diag.failure or "coupled solve did not meet its tolerances"
         predicted = lagrange(times, [lv.state.film for lv in used], t_new)
         fraction = error_fraction([dt] + [lv.time - lv_prev.time for lv, lv_prev in zip(used[::-1], used[::-1][1:])])
-        gap, sealed = self._content(model, state.film)
-        error = error_norm(fraction * (state.film - predicted) / model.squeeze.error_weight(state.film), sealed,
-                           last.sealed)
+        error = float(np.sqrt(np.mean((fraction * (state.film - predicted) / model.squeeze.error_weight(state.film)) ** 2)))
+        gap = self._gap(model, state.film)
         if state.reynolds is not None:
             state.reynolds.factor = None  # LU factors: not needed after the step, megabytes each
-        level = Level(t_new, speed, state, gap, sealed, model, diag, order, error, model.squeeze.rate(gap),
+        level = Level(t_new, speed, state, gap, model, diag, order, error, model.squeeze.rate(gap),
                       0.0 if load is None else load.velocity(state.z))
         return level, error
 
@@ -436,7 +401,6 @@ class TimeIntegrator:
         asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
         ceiling = StepCeiling(floor=shortest)
         plug = self.scene.lubricant.rheology != "newtonian"  # a yield stress: StepCeiling at rest
-        overshoot = None  # (level, error) of the least inaccurate step the error test rejected at this t
         started = time.perf_counter()
         decade = FIRST_STEP  # the next power of ten of simulated time to report
         bar = tqdm(total=history.end, unit="s", desc="transient", disable=not progress,
@@ -452,7 +416,6 @@ class TimeIntegrator:
                     dt = ceiling.limit(dt)
                     t_new = target if t + 1.1 * dt >= target else t + dt
                     level, outcome = self.step(levels, t_new, order)
-                    forced = False
                     if level is None:
                         failed, solve_failed = failed + 1, True
                         if plug and history.rest_from is not None and t >= history.rest_from:
@@ -465,28 +428,18 @@ class TimeIntegrator:
                                      "stiffens the squeeze film" if needless else "")
                             short += (f"; {shortest:.3g} s is the shortest step whose inertial force the force balance "
                                       "resolves with motion.mass" if unresolved else "")
-                            if overshoot is None:
-                                failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
-                                           f"({failed} attempt(s) in a row{short}): {outcome}")
-                                break
-                            # no solve converges on the steps the error test asks for: the least
-                            # inaccurate converged step it rejected, its error kept ("Where the
-                            # error test asks" above)
-                            (level, outcome), forced = overshoot, True
-                            t_new = level.time
-                        else:
-                            self.rejected += 1
-                            dt = max(0.25 * (t_new - t), shortest)
-                            continue
+                            failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
+                                       f"({failed} attempt(s) in a row{short}): {outcome}")
+                            break
+                        self.rejected += 1
+                        dt = max(0.25 * (t_new - t), shortest)
+                        continue
                     failed = 0
                     factor = SAFETY * max(outcome, 1e-10) ** (-1.0 / (order + 1))
-                    if outcome > 1.0 and not forced and t_new - t > max(MIN_STEP, shortest):
+                    if outcome > 1.0 and t_new - t > max(MIN_STEP, shortest):
                         self.rejected += 1
-                        if overshoot is None or outcome < overshoot[1]:
-                            overshoot = (level, outcome)
                         dt = max((t_new - t) * max(SHRINK, min(factor, 1.0)), shortest)
                         continue
-                    overshoot = None
                     levels.append(level)
                     ceiling.accepted(t_new - t)
                     bar.update(t_new - t)

@@ -98,20 +98,6 @@ def creep_note(levels) -> str:
             " (docs/physics.md section 21)")
 
 
-def overshoot_note(levels) -> str:
-    """The steps accepted above the error test, "" if none: where the test asked for steps on
-    which no solve converged, the run went on with the least inaccurate step it had rejected
-    there (unsteady/integrator.py, "Where the error test asks"), and says how far above the
-    tolerance it is."""
-    over = [lv for lv in levels if lv.error > 1.0]
-    if not over:
-        return ""
-    worst = max(over, key=lambda lv: lv.error)
-    return (f"{len(over)} step(s) accepted above the error test where no shorter step's solve converged (a cell "
-            f"sealing, docs/physics.md section 14): the largest local error {worst.error:.3g} times the tolerance, "
-            f"at t = {worst.time:.6g} s (error_estimate)")
-
-
 def band_note(scene, times, rows, reconnected_at: float) -> str:
     """What a reconnect time rests on, "" if nothing beyond the model's ground: when the
     pressurised film drained below h/sigma = 0.5 before the contact reconnected (validity flag
@@ -202,9 +188,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         fraction = opened.open_time_until(oscillating) / oscillating
         peaks = cycle_peaks(series_t, resistance, history.period, scene.motion.cycles)
     scalars["open_fraction"] = fraction
-    for note in (creep_note(levels), overshoot_note(levels)):
-        if note:
-            notes.append(note)
+    creep = creep_note(levels)
+    if creep:
+        notes.append(creep)
     notes.append(f"open threshold {threshold:g} ohm (interface.open_resistance, default {threshold:g})")
     notes.append(f"cavitation: {scene.effects.cavitation} (Swift-Stieber is not mass-conserving where a film re-forms)")
     if history.rest_from is not None:
