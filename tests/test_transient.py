@@ -324,6 +324,7 @@ def test_a_stuck_step_gives_up_after_a_few_attempts(monkeypatch):
     assert series["converged"].item() == 0 and len(attempts) == integrator.MAX_FAILED_IN_A_ROW
     assert attempts == pytest.approx([attempts[0] / 4**k for k in range(len(attempts))])
     assert f"({integrator.MAX_FAILED_IN_A_ROW} attempt(s) in a row): forced failure" in series.attrs["notes"]
+    assert "pocket" not in series.attrs["notes"]  # the sliding film at 1 m/s has none (integrator.draining_pocket)
 
 
 def test_a_singular_factor_in_a_step_is_a_failed_solve_not_a_crash(monkeypatch):

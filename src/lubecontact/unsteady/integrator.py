@@ -45,7 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
-from lubecontact.model.fluid_film import squeeze_content
+from lubecontact.model.fluid_film import FLUID_FILM_FLOOR_SIGMAS, squeeze_content
 from lubecontact.model.model import Model, SolveError
 from lubecontact.model.monolithic_newton import dense_step_serves, monolithic_solve, needs_newton, steady_solve
 from lubecontact.numerics.mesh import build_mesh
@@ -288,6 +288,27 @@ def nested_then_newton(model: Model, initial: WarmStart, fallback: NewtonFallbac
     return state, dataclasses.replace(diag, failure=f"the nested coupled solve: {why}; then one Newton: {diag.failure}")
 
 
+def draining_pocket(level: Level) -> str:
+    """What a failed run says of the pocket nearest to sealing at its last level, "" if none:
+    a node whose film is at or below the frozen content's kink (h <= 0) while its cell still
+    drains (its content still depends on its film through a face above the kink,
+    ControlVolumeMean.own > 0). Where such a pocket seals the run meets an impasse that no
+    step's solve passes (docs/physics.md section 14, "The impasse at a sealing pocket")."""
+    model = level.model
+    if model.contact is None:
+        return ""
+    film = level.state.film
+    content = squeeze_content(model, film)
+    draining = (film <= FLUID_FILM_FLOOR_SIGMAS * model.contact.sigma) & (content.own > 0.0)
+    if not draining.any():
+        return ""
+    row, column = np.unravel_index(np.argmin(np.where(draining, content.own, np.inf)), film.shape)
+    return (f"; a pocket of the film is draining at x = {model.mesh.x[column] * 1e3:.3g} mm, y = "
+            f"{model.mesh.y[row] * 1e3:.3g} mm (h/sigma = {film[row, column] / model.contact.sigma:.3g}, its cell still "
+            "open through a face): where such a pocket seals no step's solve converges (docs/physics.md section 14, "
+            "\"The impasse at a sealing pocket\"); a looser motion.tolerance may step over it")
+
+
 def scene_at(scene, speed: float):
     """The scene with operating.speed = speed (any sign: oscillation), without re-validation."""
     return dataclasses.replace(scene, operating=dataclasses.replace(scene.operating, speed=float(speed)))
@@ -429,7 +450,7 @@ class TimeIntegrator:
                             short += (f"; {shortest:.3g} s is the shortest step whose inertial force the force balance "
                                       "resolves with motion.mass" if unresolved else "")
                             failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
-                                       f"({failed} attempt(s) in a row{short}): {outcome}")
+                                       f"({failed} attempt(s) in a row{short}): {outcome}{draining_pocket(levels[-1])}")
                             break
                         self.rejected += 1
                         dt = max(0.25 * (t_new - t), shortest)
