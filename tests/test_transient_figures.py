@@ -280,3 +280,26 @@ def test_the_grease_study_has_a_grease_that_never_touches(overrides):
     stops = [bingham_squeeze_stop_film(s.operating.force, s.geometry.length, s.geometry.radius, s.mesh.x_max,
                                        s.lubricant.yield_stress) / s.roughness.sigma for s in greases]
     assert max(stops) > plots.FULL_FILM_RATIO and min(stops) < 1.0  # one never touches, one reconnects
+
+
+def test_the_stop_figure_marks_each_jump_over_an_impasse_and_says_what_the_bars_are():
+    """A step that jumped over an impasse at a sealing pocket (impasse_jump) is a vertical bar at
+    its end on the resistance, in its case's colour, and the title says what the bars are; a
+    stop without one draws no bar and says nothing of them."""
+    scene = next(iter(grease_scenes().values()))
+    falling = np.linspace(0.0, 1.0, 12)
+    plain = stopped(scene, 4e-6 - 3e-6 * falling, 1e-3 * 0.1 ** falling, 5e-3)
+    jumped = plain.copy()
+    jumped["impasse_jump"] = ("time", np.where(np.arange(12) == 7, 1, 0))
+    fig = plots.stop_figure([("jumped", jumped), ("plain", plain)], "A stop")
+    resistance = fig.axes[0]
+    bars = [line for line in resistance.get_lines() if line.get_marker() == "|"]
+    bar, = bars
+    t_after = jumped["time"].values[7] - scene.motion.stop_time - scene.motion.ramp
+    assert list(bar.get_xdata()) == pytest.approx([t_after])
+    assert list(bar.get_ydata()) == pytest.approx([jumped["contact_resistance"].values[7]])
+    assert bar.get_color() == "C0"
+    assert "bars: a step the state jumped over where a pocket of the film sealed" in resistance.get_title().replace("\n", " ")
+    fig = plots.stop_figure([("plain", plain)], "A stop")
+    assert not [line for line in fig.axes[0].get_lines() if line.get_marker() == "|"]
+    assert "bars" not in fig.axes[0].get_title()

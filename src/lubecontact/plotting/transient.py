@@ -47,11 +47,18 @@ def _rest_from(ds) -> float:
     return float(motion.get("stop_time", 0.0)) + float(motion.get("ramp", 0.0))
 
 
-def _stop_curves(cases: list[tuple[str, object]], resistance_ax, film_ax, edge: float = math.inf) -> None:
+# what a vertical bar on a stop's resistance marks (_stop_curves)
+JUMP_TEXT = "bars: a step the state jumped over where a pocket of the film sealed (docs/physics.md section 14)"
+
+
+def _stop_curves(cases: list[tuple[str, object]], resistance_ax, film_ax, edge: float = math.inf) -> bool:
     """Each (label, Dataset) of a stop against the time after the stop (log): its resistance
     on ``resistance_ax`` (log; above ``edge`` along the top edge, ``_clipped_resistance``)
     with 2 x its resistance at rest dotted and its reconnect time a dot, its minimum film (um)
-    on ``film_ax``; a run that did not converge ends in a red cross. Colour Ci for case i."""
+    on ``film_ax``; a run that did not converge ends in a red cross, and the end of each step
+    that jumped over an impasse (impasse_jump) is a vertical bar. Colour Ci for case i.
+    Whether any bar was drawn (JUMP_TEXT says what they are)."""
+    jumped = False
     for i, (label, ds) in enumerate(cases):
         color = f"C{i}"
         t = ds["time"].values - _rest_from(ds)
@@ -65,10 +72,16 @@ def _stop_curves(cases: list[tuple[str, object]], resistance_ax, film_ax, edge: 
         film_ax.plot(t[after], ds["min_film_thickness"].values[after] * 1e6, color=color)
         if not int(ds["converged"]):
             resistance_ax.plot(t[after][-1:], np.minimum(resistance[-1:], edge), "x", color="red", ms=9)
+        jumps = after & (ds["impasse_jump"].values == 1) if "impasse_jump" in ds else None  # (a series before it)
+        if jumps is not None and jumps.any():
+            resistance_ax.plot(t[jumps], np.minimum(ds["contact_resistance"].values[jumps], edge), "|", color=color,
+                               ms=14, mew=1.5)
+            jumped = True
     resistance_ax.set_xscale("log")
     resistance_ax.set_yscale("log")
     resistance_ax.set_ylabel("contact resistance (\u03a9)")
     film_ax.set_ylabel("minimum film thickness h (\u00b5m)")
+    return jumped
 
 
 def _clipped_resistance(ax, t, resistance, edge: float, color: str, label: str) -> None:
@@ -83,10 +96,11 @@ def _clipped_resistance(ax, t, resistance, edge: float, color: str, label: str) 
 def stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
     fig = Figure(figsize=(7.0, 6.5), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
-    _stop_curves(cases, top, bottom)
+    jumped = _stop_curves(cases, top, bottom)
     bottom.set_xlabel("time after the stop (s)")
     top.legend(fontsize=7, loc="upper right")
-    top.set_title(wrapped(title) + "\ndotted: 2 \u00d7 resistance at rest; dots: reconnect time", fontsize=9)
+    top.set_title(wrapped(title) + "\n" + wrapped("dotted: 2 \u00d7 resistance at rest; dots: reconnect time"
+                                                  + (f"; {JUMP_TEXT}" if jumped else "")), fontsize=9)
     return fig
 
 
@@ -266,7 +280,8 @@ def grease_stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
     film_ax, resistance_ax = fig.subplots(2, 1, sharex=True)
     threshold = float(cases[0][1]["open_resistance"])
     edge = RESISTANCE_AXIS_TOP * threshold
-    _stop_curves([(f"{label}: {_reconnect_text(ds)}", ds) for label, ds in cases], resistance_ax, film_ax, edge)
+    jumped = _stop_curves([(f"{label}: {_reconnect_text(ds)}", ds) for label, ds in cases], resistance_ax, film_ax,
+                          edge)
     scenes = [load_scene(yaml.safe_load(ds.attrs["scene"])) for _, ds in cases]
     for i, ((_, ds), scene) in enumerate(zip(cases, scenes)):
         h_stop = closed_form_stop_film(scene, film_at_stop(ds))
@@ -290,7 +305,7 @@ def grease_stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
         f"dashed (film): the film at which the grease's yield stress alone carries the load (closed form for a rigid "
         f"smooth cylinder), drawn where it lies above {FULL_FILM_RATIO:g}\u03c3 and below the film at the stop; "
         f"dotted (resistance): 2 \u00d7 resistance at rest, dots: reconnect time; resistances above {edge:g} "
-        f"\u03a9 on the top edge"), fontsize=9)
+        f"\u03a9 on the top edge" + (f"; {JUMP_TEXT}" if jumped else "")), fontsize=9)
     return fig
 
 

@@ -28,6 +28,8 @@ next step is scaled by 0.9 E^{-1/(p+1)} within [SHRINK, GROWTH]: steps are short
 film moves and grow geometrically (log-spaced) as it settles. Steps land on the motion's
 breakpoints. A step's coupled solve stops on the same weight: its last film correction
 below NONLINEAR_FRACTION of it at every node (Squeeze.settled, docs/physics.md section 14).
+Where a pocket of the film seals, the state jumps (an impasse of the model): a step over it
+is accepted without the error test, and said (TimeIntegrator.jump_over_impasse).
 
 Cavitation is Swift-Stieber (reynolds.solve_reynolds), as in the steady model: it does not
 conserve mass where a film re-forms. A mass-conserving (JFO) solver replaces it by changing
@@ -83,6 +85,11 @@ MAX_FAILED_IN_A_ROW = 6
 # fraction (its nonlinear convergence coefficient, 0.1; Hindmarsh et al. 2005, ACM TOMS
 # 31:363, section 2.1).
 NONLINEAR_FRACTION = 0.1
+# Steps tried over an impasse at a sealing pocket (TimeIntegrator.jump_over_impasse), each
+# four times the last: up to 4096 times the step the error test last asked for. Measured on the
+# Table 1 line stop at motion.tolerance 1e-5 (31 to 51 nodes) and the R = 5 mm stop at
+# 51 x 51: the first to third converged (bench/EXPERIMENTS.md, seventeenth session).
+IMPASSE_PROBES = 6
 
 
 @dataclass
@@ -188,6 +195,7 @@ class Level:
     error: float = 0.0  # error estimate / tolerance of the step
     squeeze_rate: np.ndarray | None = None
     velocity: float = 0.0  # dz/dt of the cylinder, m/s (a contact with mass; unsteady/dynamics.py)
+    jumped: bool = False  # a step over an impasse, accepted without the error test (jump_over_impasse)
 
 
 # A 2-D step's Newton fallback (nested_then_newton) that has failed this many times in a row
@@ -289,11 +297,12 @@ def nested_then_newton(model: Model, initial: WarmStart, fallback: NewtonFallbac
 
 
 def draining_pocket(level: Level) -> str:
-    """What a failed run says of the pocket nearest to sealing at its last level, "" if none:
-    a node whose film is at or below the frozen content's kink (h <= 0) while its cell still
-    drains (its content still depends on its film through a face above the kink,
-    ControlVolumeMean.own > 0). Where such a pocket seals the run meets an impasse that no
-    step's solve passes (docs/physics.md section 14, "The impasse at a sealing pocket")."""
+    """Where the pocket nearest to sealing is at a level, "" if none: "x = .. mm, y = .. mm
+    (h/sigma = ..)" of a node whose film is at or below the frozen content's kink (h <= 0)
+    while its cell still drains (its content still depends on its film through a face above
+    the kink, ControlVolumeMean.own > 0), the one whose cell's content depends least on its
+    film. Where such a pocket seals the run meets an impasse (docs/physics.md section 14,
+    "The impasse at a sealing pocket")."""
     model = level.model
     if model.contact is None:
         return ""
@@ -303,10 +312,23 @@ def draining_pocket(level: Level) -> str:
     if not draining.any():
         return ""
     row, column = np.unravel_index(np.argmin(np.where(draining, content.own, np.inf)), film.shape)
-    return (f"; a pocket of the film is draining at x = {model.mesh.x[column] * 1e3:.3g} mm, y = "
-            f"{model.mesh.y[row] * 1e3:.3g} mm (h/sigma = {film[row, column] / model.contact.sigma:.3g}, its cell still "
-            "open through a face): where such a pocket seals no step's solve converges (docs/physics.md section 14, "
-            "\"The impasse at a sealing pocket\"); a looser motion.tolerance may step over it")
+    return (f"x = {model.mesh.x[column] * 1e3:.3g} mm, y = {model.mesh.y[row] * 1e3:.3g} mm "
+            f"(h/sigma = {film[row, column] / model.contact.sigma:.3g})")
+
+
+@dataclass(frozen=True)
+class ImpasseJump:
+    """A step accepted without the error test over an impasse at a sealing pocket
+    (TimeIntegrator.jump_over_impasse)."""
+
+    time: float  # s: the level the step starts from
+    step: float  # s: its length, an upper bound on how late the jump is taken
+    error: float  # its error estimate / tolerance (not tested: the state jumps)
+    pocket: str  # where the pocket drained at its start (draining_pocket)
+
+    def describe(self) -> str:
+        return (f"t = {self.time:.6g} s over {self.step:.3g} s (error estimate {self.error:.3g} times the "
+                f"tolerance), a pocket draining at {self.pocket}")
 
 
 def scene_at(scene, speed: float):
@@ -331,6 +353,7 @@ class TimeIntegrator:
         self.coupled_solves = 0
         self.rejected = 0
         self.fallback = NewtonFallback()
+        self.jumps: list[ImpasseJump] = []  # jump_over_impasse
 
     def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
         """The content the squeeze term differentiates in time: each cell's
@@ -391,12 +414,44 @@ class TimeIntegrator:
                       0.0 if load is None else load.velocity(state.z))
         return level, error
 
+    def jump_over_impasse(self, levels: list[Level], shortest: float, target: float, pocket: str) -> Level | None:
+        """The level after a jump over an impasse at a sealing pocket, None where there is no
+        draining pocket (``pocket`` empty, draining_pocket) or no jump converges.
+
+        Called where a step's solve has failed at every length the run tries (MAX_FAILED_IN_A_ROW
+        and the other limits of ``run``) while a pocket of the film drains. The model then has no
+        continuous state past the seal (docs/physics.md section 14, "The impasse at a sealing
+        pocket"): with the content frozen below the kink and the leakage floor, the sealed
+        pocket's pressure must fall to its neighbours' at once, and the films with it. The
+        integrator takes that jump as the model says: first-order steps of 4, 16, ...
+        4^IMPASSE_PROBES times ``shortest`` (the failed step, or the longer step the error test
+        last asked for), up to the next breakpoint ``target``, the first whose solve converges
+        accepted without the error test (a jump has no local error to test; its estimate is
+        kept in the level and the ImpasseJump). Its length bounds how late the jump is taken.
+        A run that passes every step never comes here: its answers do not change."""
+        if not pocket:
+            return None
+        start = levels[-1].time
+        step = shortest
+        for _ in range(IMPASSE_PROBES):
+            step *= 4.0
+            t_new = min(start + step, target)
+            level, outcome = self.step(levels, t_new, 1)
+            if level is not None:
+                self.jumps.append(ImpasseJump(start, t_new - start, outcome, pocket))
+                return dataclasses.replace(level, jumped=True)
+            self.rejected += 1
+            if t_new == target:
+                break
+        return None
+
     def run(self, progress: bool = False, report=None):
         """(levels, failure message or ''): accepted levels from t = 0 to the motion's end,
         or up to where the run stopped: a step that failed MAX_FAILED_IN_A_ROW times, below
         MIN_STEP or below motion.tolerance times the step the error test last asked for (see
-        MAX_FAILED_IN_A_ROW), MAX_STEPS, or an interruption (KeyboardInterrupt, which a SIGTERM
-        handler may raise), whose failure message starts with "interrupted". ``report``
+        MAX_FAILED_IN_A_ROW), unless a pocket drains there and a jump over its impasse
+        converges (jump_over_impasse), MAX_STEPS, or an interruption (KeyboardInterrupt,
+        which a SIGTERM handler may raise), whose failure message starts with "interrupted". ``report``
         (a callable taking one line) hears each decade of simulated time reached (1e-6 s,
         1e-5 s, ...): progress where no bar is shown."""
         from tqdm.auto import tqdm
@@ -449,8 +504,22 @@ class TimeIntegrator:
                                      "stiffens the squeeze film" if needless else "")
                             short += (f"; {shortest:.3g} s is the shortest step whose inertial force the force balance "
                                       "resolves with motion.mass" if unresolved else "")
+                            pocket = draining_pocket(levels[-1])
+                            jump = self.jump_over_impasse(levels, max(t_new - t, asked or 0.0), target, pocket)
+                            if jump is not None:  # restart at first order from it, as after a breakpoint
+                                levels.append(jump)
+                                bar.update(jump.time - t)
+                                failed, solve_failed, order, dt = 0, False, 1, jump.time - t
+                                asked = dt
+                                continue
+                            if pocket:
+                                outcome += (f"; a pocket of the film is draining at {pocket}, its cell still open "
+                                            "through a face: where such a pocket seals the state must jump "
+                                            "(docs/physics.md section 14, \"The impasse at a sealing pocket\"), but no "
+                                            f"longer step (up to {4.0 ** IMPASSE_PROBES:g} times) converged either; a "
+                                            "looser motion.tolerance may step over it")
                             failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
-                                       f"({failed} attempt(s) in a row{short}): {outcome}{draining_pocket(levels[-1])}")
+                                       f"({failed} attempt(s) in a row{short}): {outcome}")
                             break
                         self.rejected += 1
                         dt = max(0.25 * (t_new - t), shortest)

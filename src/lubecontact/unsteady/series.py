@@ -31,7 +31,9 @@ SERIES = {
     "step_converged": ("1", "1 if the coupled solve of the step met its tolerances"),
     "iterations": ("1", "outer (deformation) iterations of the step's coupled solve"),
     "order": ("1", "order of the BDF formula of the step (0: the steady start)"),
-    "error_estimate": ("1", "estimated local error of the step / its tolerance (accepted: <= 1)"),
+    "error_estimate": ("1", "estimated local error of the step / its tolerance (accepted: <= 1, except a jump "
+                                  "over an impasse)"),
+    "impasse_jump": ("1", "1 if the step jumped over an impasse at a sealing pocket, accepted without the error test"),
     "volume_balance": ("1", "net outflow of the full-film region + its volume change rate, relative to the flows"),
     "valid": CASE["valid"],
 }
@@ -45,6 +47,9 @@ SCALARS = {
     "rejected_steps": ("1", "time steps rejected by the error control or a failed solve"),
     "coupled_solves": ("1", "coupled solves (accepted and rejected steps, start and rest state)"),
     "solve_time": ("s", "wall time of the run"),
+    "impasse_jumps": ("1", "steps over an impasse at a sealing pocket, accepted without the error test (the state "
+                           "jumps there)"),
+    "longest_impasse_jump": ("s", "the longest such step (0: none): a time within it is uncertain by its length"),
     "reconnect_time_error": ("s", "estimated time-integration error of reconnect_time (motion.error_bar): "
                                   "from a second run at motion.tolerance / 10, Richardson in the tolerance"),
     "open_fraction": ("1", "oscillation: fraction of the oscillation time within events above the open resistance"),
@@ -67,6 +72,7 @@ EVENT = {
     "event_open_at_end": ("1", "1 if the event is still open when the run ends (its duration a lower bound)"),
 }
 INTEGER = ("step_converged", "iterations", "order", "converged", "steps", "rejected_steps", "coupled_solves", "valid",
+           "impasse_jumps", "impasse_jump",
            "event_count", "relative_event_count", "event_open_at_end")
 
 
@@ -149,7 +155,8 @@ def level_rows(levels) -> list[dict]:
         flags = assess(lv.model.scene, lv.model.mesh, lv.model.contact, lv.state, lv.model.hydrodynamic)
         rows.append(instant(lv.model, lv.state) | {
             "step_converged": int(lv.diagnostics.converged), "iterations": lv.diagnostics.iterations,
-            "order": lv.order, "error_estimate": lv.error, "volume_balance": volume_balance(lv),
+            "order": lv.order, "error_estimate": lv.error, "impasse_jump": int(lv.jumped),
+            "volume_balance": volume_balance(lv),
             "valid": int(not flags), "validity": flags,
         })
     return rows

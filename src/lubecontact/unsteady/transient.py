@@ -51,6 +51,15 @@ ERROR_BAR_TIGHTENING = 10.0
 ERROR_ORDER_IN_TOLERANCE = 2.0 / 3.0
 
 
+def impasse_note(jumps) -> str:
+    """What a run that jumped over impasses at sealing pockets says (integrator.ImpasseJump)."""
+    return (f"{len(jumps)} impasse jump(s): where a pocket of the film sealed no step's solve continued the state "
+            "(docs/physics.md section 14, \"The impasse at a sealing pocket\"), so the pocket's pressure fell to its "
+            "neighbours' at once, as the model says, over one first-order step accepted without the error test: "
+            + "; ".join(jump.describe() for jump in jumps)
+            + ". A time within such a step is uncertain by its length (longest_impasse_jump)")
+
+
 def tighter_reconnect_time(scene, history, rest: float, progress: bool) -> float:
     """reconnect_time of the same motion at motion.tolerance / ERROR_BAR_TIGHTENING (NaN if
     that run fails)."""
@@ -162,7 +171,11 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         "rejected_steps": integrator.rejected,
         "coupled_solves": integrator.coupled_solves,
         "solve_time": integrator.wall_time,
+        "impasse_jumps": len(integrator.jumps),
+        "longest_impasse_jump": max((jump.step for jump in integrator.jumps), default=0.0),
     }
+    if integrator.jumps:
+        notes.append(impasse_note(integrator.jumps))
     rows = level_rows(levels)
     resistance = np.array([row["contact_resistance"] for row in rows])
     recon = reconnect_time(series_t, resistance, history.rest_from, scene.motion.reconnect_factor * rest,
