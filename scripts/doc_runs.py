@@ -199,10 +199,9 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
         f"{seconds(r['vg100_tight'])} ({percent(tight['vg100'])}), the 10 Pa s grease at "
         f"{seconds(r['grease_tight'])} ({percent(tight['grease'])}): the default tolerance's time error is at least "
         f"that on each, {'largest' if abs(tight['grease']) > max(abs(tight['table1']), abs(tight['vg100'])) else 'not largest'} "
-        "on the grease. The step's error is a mean over the nodes, and a mesh whose inlet "
-        "was sized for a fast, viscous motion holds many films that barely move at rest: the same tolerance is "
-        "looser there (docs/physics.md section 14, \"The error norm at rest\"; \"What accuracy costs\" "
-        "gives Table 1's by its tolerance ladder).",
+        "on the grease. The step's error is a mean over the nodes; at rest the steps leave the long inlet a fast, "
+        "viscous motion needs, whose films barely move and would dilute it (docs/physics.md section 14, \"The "
+        "domain at rest\"; \"What accuracy costs\" gives Table 1's by its tolerance ladder).",
     ])
     mesh = ", ".join(seconds(lines[n]["reconnect"]) if n != 31 else
                      f"<!-- measured:line31 -->{lines[n]['reconnect'] * 1e3:.3g}<!-- /measured --> ms" for n in LINE_NODES[:-1])

@@ -10,6 +10,7 @@ from lubecontact.numerics.mesh import (
     build_mesh,
     domain_x,
     nodes_x,
+    without_inlet_columns,
 )
 
 TABLE1 = "config/scenes/table1.yaml"
@@ -59,3 +60,15 @@ def test_slow_cases_keep_their_mesh():
     mesh, slow = build_mesh(fast), build_mesh(lc.load_scene(TABLE1))
     assert mesh.dx == pytest.approx(slow.dx, rel=1e-12) and mesh.x[-1] == slow.x[-1] and mesh.nx > 150
     assert mesh.x[0] > -0.9 * fast.geometry.radius
+
+
+def test_the_mesh_at_rest_is_the_last_columns_of_the_mesh_in_motion():
+    """A stop's steps at rest run on the automatic domain of speed 0 (unsteady/integrator
+    rest_domain): the mesh built for 1 m/s without its extra inlet columns has the nodes that
+    build_mesh gives the scene at rest, so fields restrict by slicing."""
+    moving = build_mesh(lc.load_scene(TABLE1, {"operating.speed": 1.0}))
+    resting = build_mesh(lc.load_scene(TABLE1, {"operating.speed": 0.0}))
+    trimmed = without_inlet_columns(moving, moving.nx - resting.nx)
+    assert moving.nx > resting.nx and trimmed.shape == resting.shape
+    assert trimmed.x == pytest.approx(resting.x, rel=0, abs=1e-12 * resting.dx)
+    assert trimmed.nodal_area == pytest.approx(resting.nodal_area, rel=1e-9)

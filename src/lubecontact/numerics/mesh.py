@@ -157,6 +157,12 @@ class Mesh:
         return np.outer(wy, wx)
 
 
+def without_inlet_columns(mesh: Mesh, columns: int) -> Mesh:
+    """``mesh`` without its first ``columns`` columns (the upstream end): the same nodes
+    downstream, so fields on ``mesh`` restrict to it by slicing [:, columns:]."""
+    return Mesh(x=mesh.x[columns:], y=mesh.y, length=mesh.length)
+
+
 def build_mesh(scene) -> Mesh:
     x_min, x_max = domain_x(scene)
     x = np.linspace(x_min, x_max, nodes_x(scene))

@@ -76,9 +76,12 @@ class Events:
 
 def dense_film(times, films, orders, step: int, t: float) -> np.ndarray:
     """The film at t in [times[step - 1], times[step]]: the polynomial of that BDF step
-    through the levels step - order .. step (integrator.lagrange)."""
+    through the levels step - order .. step (integrator.lagrange). The first steps at rest
+    on the rest domain (integrator.TimeIntegrator.rest_domain) follow levels of the motion's
+    wider mesh: their films are cut to the step's columns, the last ones, as the step read them."""
     used = slice(max(step - max(orders[step], 1), 0), step + 1)
-    return lagrange(list(times[used]), list(films[used]), t)
+    columns = films[step].shape[-1]
+    return lagrange(list(times[used]), [film[..., -columns:] for film in films[used]], t)
 
 
 def log_excess(resistance: float, threshold: float) -> float:

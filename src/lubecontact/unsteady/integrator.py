@@ -50,7 +50,7 @@ from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.fluid_film import FLUID_FILM_FLOOR_SIGMAS, squeeze_content
 from lubecontact.model.model import Model, SolveError
 from lubecontact.model.monolithic_newton import dense_step_serves, monolithic_solve, needs_newton, steady_solve
-from lubecontact.numerics.mesh import build_mesh
+from lubecontact.numerics.mesh import build_mesh, nodes_x, without_inlet_columns
 from lubecontact.unsteady.dynamics import BaseExcitation, Dynamics
 from lubecontact.unsteady.motion import MAX_STEPS
 
@@ -296,24 +296,34 @@ def nested_then_newton(model: Model, initial: WarmStart, fallback: NewtonFallbac
     return state, dataclasses.replace(diag, failure=f"the nested coupled solve: {why}; then one Newton: {diag.failure}")
 
 
-def draining_pocket(level: Level) -> str:
-    """Where the pocket nearest to sealing is at a level, "" if none: "x = .. mm, y = .. mm
-    (h/sigma = ..)" of a node whose film is at or below the frozen content's kink (h <= 0)
-    while its cell still drains (its content still depends on its film through a face above
-    the kink, ControlVolumeMean.own > 0), the one whose cell's content depends least on its
-    film. Where such a pocket seals the run meets an impasse (docs/physics.md section 14,
-    "The impasse at a sealing pocket")."""
-    model = level.model
+def sealing_pocket(levels: list[Level]) -> str:
+    """Where a pocket of the film seals at the last of ``levels``, "" if none: "x = .. mm,
+    y = .. mm (h/sigma = .., ...)" of a node whose film is at or below the frozen content's kink
+    (h <= 0) while its cell still drains (its content still depends on its film through a face
+    above the kink, ControlVolumeMean.own > 0; the one whose content depends least on its film),
+    else of one whose cell sealed within the last step (own > 0 at the level before). Where
+    such a pocket seals the run meets an impasse (docs/physics.md section 14, "The impasse at a
+    sealing pocket")."""
+    last, before = levels[-1], levels[-2]
+    model = last.model
     if model.contact is None:
         return ""
-    film = level.state.film
-    content = squeeze_content(model, film)
-    draining = (film <= FLUID_FILM_FLOOR_SIGMAS * model.contact.sigma) & (content.own > 0.0)
-    if not draining.any():
-        return ""
-    row, column = np.unravel_index(np.argmin(np.where(draining, content.own, np.inf)), film.shape)
+    film = last.state.film
+    own = squeeze_content(model, film).own
+    at_kink = film <= FLUID_FILM_FLOOR_SIGMAS * model.contact.sigma
+    draining = at_kink & (own > 0.0)
+    if draining.any():
+        where, how = np.argmin(np.where(draining, own, np.inf)), "its cell still open through a face"
+    else:
+        if before.state.film.shape != film.shape:  # the first step on the domain at rest
+            return ""
+        sealed = at_kink & (own == 0.0) & (squeeze_content(before.model, before.state.film).own > 0.0)
+        if not sealed.any():
+            return ""
+        where, how = np.argmax(sealed), "its cell sealed within the last step"
+    row, column = np.unravel_index(where, film.shape)
     return (f"x = {model.mesh.x[column] * 1e3:.3g} mm, y = {model.mesh.y[row] * 1e3:.3g} mm "
-            f"(h/sigma = {film[row, column] / model.contact.sigma:.3g})")
+            f"(h/sigma = {film[row, column] / model.contact.sigma:.3g}, {how})")
 
 
 @dataclass(frozen=True)
@@ -324,11 +334,27 @@ class ImpasseJump:
     time: float  # s: the level the step starts from
     step: float  # s: its length, an upper bound on how late the jump is taken
     error: float  # its error estimate / tolerance (not tested: the state jumps)
-    pocket: str  # where the pocket drained at its start (draining_pocket)
+    pocket: str  # where a pocket sealed at its start (sealing_pocket)
 
     def describe(self) -> str:
         return (f"t = {self.time:.6g} s over {self.step:.3g} s (error estimate {self.error:.3g} times the "
-                f"tolerance), a pocket draining at {self.pocket}")
+                f"tolerance), a pocket sealing at {self.pocket}")
+
+
+def restricted(level: Level, columns: int, model: Model) -> Level:
+    """``level`` on the rest domain of ``model`` (its mesh: this level's without the first
+    ``columns`` columns): the fields a step reads of its last levels (the film, deformation,
+    content, pressure and cavitated set), sliced; the pressure held at 0 on the new inlet
+    boundary. Only for the steps' history: the series keeps ``level`` itself."""
+    cut = (slice(None), slice(columns, None))
+    state, reynolds = level.state, level.state.reynolds
+    if reynolds is not None:
+        pressure, cavitated = reynolds.pressure[cut].copy(), reynolds.cavitated[cut].copy()
+        pressure[:, 0], cavitated[:, 0] = 0.0, False
+        reynolds = dataclasses.replace(reynolds, pressure=pressure, cavitated=cavitated, factor=None)
+    state = dataclasses.replace(state, delta=state.delta[cut], film=state.film[cut], reynolds=reynolds)
+    rate = None if level.squeeze_rate is None else level.squeeze_rate[cut]
+    return dataclasses.replace(level, state=state, expected_gap=level.expected_gap[cut], model=model, squeeze_rate=rate)
 
 
 def scene_at(scene, speed: float):
@@ -342,18 +368,43 @@ class TimeIntegrator:
     def __init__(self, scene, history, contact=None):
         self.scene, self.history = scene, history
         self.tolerance = scene.motion.tolerance
-        # one mesh for the whole run, its automatic inlet sized for the fastest instant (mesh.py)
+        # one mesh while the contact moves, its automatic inlet sized for the fastest instant
+        # (mesh.py); at rest the inlet of speed 0 (rest_domain)
         mesh = build_mesh(scene_at(scene, history.peak_speed()))
         steady = Model.assemble(scene_at(scene, history.initial_speed()), mesh=mesh, contact=contact)
         self.contact = steady.contact
         self.floor = steady.contact.sigma if steady.contact is not None else FILM_FLOOR
         self.steady_model = steady
+        self.step_model = steady  # the model the steps are built on: steady's, then rest_domain's
         self.dynamics = Dynamics.from_scene(scene)
         self.base = BaseExcitation.from_scene(scene)
         self.coupled_solves = 0
         self.rejected = 0
         self.fallback = NewtonFallback()
         self.jumps: list[ImpasseJump] = []  # jump_over_impasse
+
+    def rest_domain(self) -> tuple[int, Model] | None:
+        """(columns, model) of the domain a motion goes on with at rest: the automatic inlet
+        of the scene at speed 0 (mesh.nodes_x), which the mesh of the motion, built for its
+        fastest instant, extends upstream by ``columns`` columns at the same spacing; None
+        without a rest or without such columns (an explicit mesh.x_min). At rest the inlet
+        carries no film: its pressure is the squeeze's alone, decaying as 1/h^3 where the gap
+        opens (docs/physics.md section 14); the steps move onto it once those columns carry
+        less than motion.tolerance of the load (inlet_load)."""
+        if self.history.rest_from is None:
+            return None
+        columns = self.steady_model.mesh.nx - nodes_x(scene_at(self.scene, 0.0))
+        if columns <= 0:
+            return None
+        mesh = without_inlet_columns(self.steady_model.mesh, columns)
+        return columns, Model.assemble(scene_at(self.scene, 0.0), mesh=mesh, contact=self.contact)
+
+    def inlet_load(self, level: Level, columns: int) -> float:
+        """The share of the applied force that ``level``'s pressure carries on its mesh's first
+        ``columns`` columns (those the rest domain drops)."""
+        total = level.state.fluid_pressure + level.state.contact_pressure
+        area = level.model.mesh.nodal_area
+        return float(np.sum(total[:, :columns] * area[:, :columns])) / self.scene.operating.force
 
     def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
         """The content the squeeze term differentiates in time: each cell's
@@ -384,7 +435,7 @@ class TimeIntegrator:
                                       [lv.velocity for lv in earlier])
         squeeze = Squeeze(c[0], history, scale, self.tolerance, self.floor)
         model = dataclasses.replace(
-            self.steady_model, scene=scene_at(self.scene, speed), squeeze=squeeze,
+            self.step_model, scene=scene_at(self.scene, speed), squeeze=squeeze,
             hydrodynamic=bool(self.scene.effects.hydrodynamics), load=load,
         )
         used = levels[-(order + 1):]
@@ -416,10 +467,10 @@ class TimeIntegrator:
 
     def jump_over_impasse(self, levels: list[Level], shortest: float, target: float, pocket: str) -> Level | None:
         """The level after a jump over an impasse at a sealing pocket, None where there is no
-        draining pocket (``pocket`` empty, draining_pocket) or no jump converges.
+        sealing pocket (``pocket`` empty, sealing_pocket) or no jump converges.
 
         Called where a step's solve has failed at every length the run tries (MAX_FAILED_IN_A_ROW
-        and the other limits of ``run``) while a pocket of the film drains. The model then has no
+        and the other limits of ``run``) while a pocket of the film seals. The model then has no
         continuous state past the seal (docs/physics.md section 14, "The impasse at a sealing
         pocket"): with the content frozen below the kink and the leakage floor, the sealed
         pocket's pressure must fall to its neighbours' at once, and the films with it. The
@@ -449,7 +500,7 @@ class TimeIntegrator:
         """(levels, failure message or ''): accepted levels from t = 0 to the motion's end,
         or up to where the run stopped: a step that failed MAX_FAILED_IN_A_ROW times, below
         MIN_STEP or below motion.tolerance times the step the error test last asked for (see
-        MAX_FAILED_IN_A_ROW), unless a pocket drains there and a jump over its impasse
+        MAX_FAILED_IN_A_ROW), unless a pocket seals there and a jump over its impasse
         converges (jump_over_impasse), MAX_STEPS, or an interruption (KeyboardInterrupt,
         which a SIGTERM handler may raise), whose failure message starts with "interrupted". ``report``
         (a callable taking one line) hears each decade of simulated time reached (1e-6 s,
@@ -477,6 +528,8 @@ class TimeIntegrator:
         asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
         ceiling = StepCeiling(floor=shortest)
         plug = self.scene.lubricant.rheology != "newtonian"  # a yield stress: StepCeiling at rest
+        rest = self.rest_domain()
+        stepping = levels  # the levels the steps read: at rest their last ones restricted to the rest domain
         started = time.perf_counter()
         decade = FIRST_STEP  # the next power of ten of simulated time to report
         bar = tqdm(total=history.end, unit="s", desc="transient", disable=not progress,
@@ -491,11 +544,11 @@ class TimeIntegrator:
                     dt = min(dt, self.base.max_step(t))
                     dt = ceiling.limit(dt)
                     t_new = target if t + 1.1 * dt >= target else t + dt
-                    level, outcome = self.step(levels, t_new, order)
+                    level, outcome = self.step(stepping, t_new, order)
                     if level is None:
                         failed, solve_failed = failed + 1, True
                         if plug and history.rest_from is not None and t >= history.rest_from:
-                            ceiling.solve_failed(t_new - t, t - levels[-2].time)
+                            ceiling.solve_failed(t_new - t, t - stepping[-2].time)
                         needless = asked is not None and t_new - t < self.tolerance * asked
                         unresolved = t_new - t <= shortest
                         if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW or needless or unresolved:
@@ -504,18 +557,19 @@ class TimeIntegrator:
                                      "stiffens the squeeze film" if needless else "")
                             short += (f"; {shortest:.3g} s is the shortest step whose inertial force the force balance "
                                       "resolves with motion.mass" if unresolved else "")
-                            pocket = draining_pocket(levels[-1])
-                            jump = self.jump_over_impasse(levels, max(t_new - t, asked or 0.0), target, pocket)
+                            pocket = sealing_pocket(stepping)
+                            jump = self.jump_over_impasse(stepping, max(t_new - t, asked or 0.0), target, pocket)
                             if jump is not None:  # restart at first order from it, as after a breakpoint
                                 levels.append(jump)
+                                if stepping is not levels:
+                                    stepping.append(jump)
                                 bar.update(jump.time - t)
                                 failed, solve_failed, order, dt = 0, False, 1, jump.time - t
                                 asked = dt
                                 continue
                             if pocket:
-                                outcome += (f"; a pocket of the film is draining at {pocket}, its cell still open "
-                                            "through a face: where such a pocket seals the state must jump "
-                                            "(docs/physics.md section 14, \"The impasse at a sealing pocket\"), but no "
+                                outcome += (f"; a pocket of the film is sealing at {pocket}: there the state must "
+                                            "jump (docs/physics.md section 14, \"The impasse at a sealing pocket\"), but no "
                                             f"longer step (up to {4.0 ** IMPASSE_PROBES:g} times) converged either; a "
                                             "looser motion.tolerance may step over it")
                             failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
@@ -531,6 +585,12 @@ class TimeIntegrator:
                         dt = max((t_new - t) * max(SHRINK, min(factor, 1.0)), shortest)
                         continue
                     levels.append(level)
+                    if stepping is not levels:
+                        stepping.append(level)
+                    elif rest is not None and t_new >= history.rest_from and \
+                            abs(self.inlet_load(level, rest[0])) <= self.tolerance:
+                        columns, self.step_model = rest
+                        stepping = [levels[0], *(restricted(lv, columns, self.step_model) for lv in levels[-3:])]
                     ceiling.accepted(t_new - t)
                     bar.update(t_new - t)
                     bar.set_postfix_str(f"dt = {t_new - t:.2g} s, steps {len(levels) - 2}")
