@@ -195,7 +195,9 @@ class Level:
     error: float = 0.0  # error estimate / tolerance of the step
     squeeze_rate: np.ndarray | None = None
     velocity: float = 0.0  # dz/dt of the cylinder, m/s (a contact with mass; unsteady/dynamics.py)
-    jumped: bool = False  # a step over an impasse, accepted without the error test (jump_over_impasse)
+    # where a pocket sealed when this step jumped over its impasse, accepted without the error
+    # test (jump_over_impasse, sealing_pocket); "" for every other step
+    impasse: str = ""
 
 
 # A 2-D step's Newton fallback (nested_then_newton) that has failed this many times in a row
@@ -326,21 +328,6 @@ def sealing_pocket(levels: list[Level]) -> str:
             f"(h/sigma = {film[row, column] / model.contact.sigma:.3g}, {how})")
 
 
-@dataclass(frozen=True)
-class ImpasseJump:
-    """A step accepted without the error test over an impasse at a sealing pocket
-    (TimeIntegrator.jump_over_impasse)."""
-
-    time: float  # s: the level the step starts from
-    step: float  # s: its length, an upper bound on how late the jump is taken
-    error: float  # its error estimate / tolerance (not tested: the state jumps)
-    pocket: str  # where a pocket sealed at its start (sealing_pocket)
-
-    def describe(self) -> str:
-        return (f"t = {self.time:.6g} s over {self.step:.3g} s (error estimate {self.error:.3g} times the "
-                f"tolerance), a pocket sealing at {self.pocket}")
-
-
 def restricted(level: Level, columns: int, model: Model) -> Level:
     """``level`` on the rest domain of ``model`` (its mesh: this level's without the first
     ``columns`` columns): the fields a step reads of its last levels (the film, deformation,
@@ -381,7 +368,6 @@ class TimeIntegrator:
         self.coupled_solves = 0
         self.rejected = 0
         self.fallback = NewtonFallback()
-        self.jumps: list[ImpasseJump] = []  # jump_over_impasse
 
     def rest_domain(self) -> tuple[int, Model] | None:
         """(columns, model) of the domain a motion goes on with at rest: the automatic inlet
@@ -477,8 +463,9 @@ class TimeIntegrator:
         integrator takes that jump as the model says: first-order steps of 4, 16, ...
         4^IMPASSE_PROBES times ``shortest`` (the failed step, or the longer step the error test
         last asked for), up to the next breakpoint ``target``, the first whose solve converges
-        accepted without the error test (a jump has no local error to test; its estimate is
-        kept in the level and the ImpasseJump). Its length bounds how late the jump is taken.
+        accepted without the error test (a jump has no local error to test; its estimate stays
+        in the level, whose ``impasse`` says where the pocket sealed). Its length bounds how
+        late the jump is taken.
         A run that passes every step never comes here: its answers do not change."""
         if not pocket:
             return None
@@ -489,8 +476,7 @@ class TimeIntegrator:
             t_new = min(start + step, target)
             level, outcome = self.step(levels, t_new, 1)
             if level is not None:
-                self.jumps.append(ImpasseJump(start, t_new - start, outcome, pocket))
-                return dataclasses.replace(level, jumped=True)
+                return dataclasses.replace(level, impasse=pocket)
             self.rejected += 1
             if t_new == target:
                 break

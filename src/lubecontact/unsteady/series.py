@@ -155,7 +155,7 @@ def level_rows(levels) -> list[dict]:
         flags = assess(lv.model.scene, lv.model.mesh, lv.model.contact, lv.state, lv.model.hydrodynamic)
         rows.append(instant(lv.model, lv.state) | {
             "step_converged": int(lv.diagnostics.converged), "iterations": lv.diagnostics.iterations,
-            "order": lv.order, "error_estimate": lv.error, "impasse_jump": int(lv.jumped),
+            "order": lv.order, "error_estimate": lv.error, "impasse_jump": int(bool(lv.impasse)),
             "volume_balance": volume_balance(lv),
             "valid": int(not flags), "validity": flags,
         })

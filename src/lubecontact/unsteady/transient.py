@@ -51,12 +51,20 @@ ERROR_BAR_TIGHTENING = 10.0
 ERROR_ORDER_IN_TOLERANCE = 2.0 / 3.0
 
 
+def impasse_jumps(levels) -> list[tuple[object, object]]:
+    """(level before, level after) of each step that jumped over an impasse at a sealing
+    pocket (integrator.Level.impasse, TimeIntegrator.jump_over_impasse)."""
+    return [(before, level) for before, level in zip(levels, levels[1:]) if level.impasse]
+
+
 def impasse_note(jumps) -> str:
-    """What a run that jumped over impasses at sealing pockets says (integrator.ImpasseJump)."""
+    """What a run that jumped over impasses at sealing pockets says (``impasse_jumps``)."""
     return (f"{len(jumps)} impasse jump(s): where a pocket of the film sealed no step's solve continued the state "
             "(docs/physics.md section 14, \"The impasse at a sealing pocket\"), so the pocket's pressure fell to its "
             "neighbours' at once, as the model says, over one first-order step accepted without the error test: "
-            + "; ".join(jump.describe() for jump in jumps)
+            + "; ".join(f"t = {before.time:.6g} s over {level.time - before.time:.3g} s (error estimate "
+                        f"{level.error:.3g} times the tolerance), a pocket sealing at {level.impasse}"
+                        for before, level in jumps)
             + ". A time within such a step is uncertain by its length (longest_impasse_jump)")
 
 
@@ -171,11 +179,12 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         "rejected_steps": integrator.rejected,
         "coupled_solves": integrator.coupled_solves,
         "solve_time": integrator.wall_time,
-        "impasse_jumps": len(integrator.jumps),
-        "longest_impasse_jump": max((jump.step for jump in integrator.jumps), default=0.0),
     }
-    if integrator.jumps:
-        notes.append(impasse_note(integrator.jumps))
+    jumps = impasse_jumps(levels)
+    scalars["impasse_jumps"] = len(jumps)
+    scalars["longest_impasse_jump"] = max((level.time - before.time for before, level in jumps), default=0.0)
+    if jumps:
+        notes.append(impasse_note(jumps))
     rows = level_rows(levels)
     resistance = np.array([row["contact_resistance"] for row in rows])
     recon = reconnect_time(series_t, resistance, history.rest_from, scene.motion.reconnect_factor * rest,
