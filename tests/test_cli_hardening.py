@@ -190,6 +190,20 @@ def test_internal_error_is_one_line_with_a_saved_traceback(tmp_path, capsys, mon
     assert not (tmp_path / "x.nc").exists()
 
 
+def test_a_solve_that_leaves_no_state_is_not_converged_not_a_bug(tmp_path, capsys, monkeypatch):
+    import lubecontact.model.solve
+    from lubecontact.model.model import SolveError
+
+    def raised(*args, **kwargs):
+        raise SolveError("the nested solver: the film closed; then one Newton: no descent")
+
+    monkeypatch.setattr(lubecontact.model.solve, "solve_case", raised)
+    code, _, err = run(capsys, "solve", SCENE, "--out", str(tmp_path / "x.nc"))
+    assert code == cli.EXIT_NOT_CONVERGED and err.count("\n") == 1
+    assert "did NOT converge" in err and "the film closed" in err and "internal error" not in err
+    assert not (tmp_path / "x.nc").exists()
+
+
 def test_interrupt_and_a_failed_write_are_one_line_each(tmp_path, capsys, monkeypatch):
     import errno
 

@@ -231,10 +231,16 @@ def _run(args) -> int:
 
     out, est = _checked(args, scene, 1 if speeds is None else len(speeds))
     if args.command == "solve":  # no xarray: the case is written with netCDF4 (case_result)
+        from lubecontact.model.model import SolveError
         from lubecontact.model.solve import solve_case
 
-        with elapsed_bar(est):
-            result, _ = solve_case(scene, fields=args.fields)
+        try:
+            with elapsed_bar(est):
+                result, _ = solve_case(scene, fields=args.fields)
+        except SolveError as err:  # every solver raised before it had a state: nothing to write
+            print(f"lubecontact: the solve did NOT converge and left no state to write ({err}); nothing was "
+                  f"written", file=sys.stderr)
+            return EXIT_NOT_CONVERGED
         write, effects_run, values = result.write, result.attrs["effects_run"], result.scalars
         speeds, validity_notes = [scene.operating.speed], result.attrs["validity_notes"]
     elif args.command == "transient":
