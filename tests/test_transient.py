@@ -511,6 +511,19 @@ def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch
     assert series["converged"].item() == 1, series.attrs["notes"]
 
 
+@pytest.mark.parametrize("changes, period", [
+    ([5.0, 1.0e-2] + [2.4e4, 1.1e4] * 4, 2),  # alternating between two states (a 101 x 21 stop's failure)
+    ([7.0, 9.0] + [5.6e4, 2.4e4, 5.8e4, 5.5e4] * 3, 4),  # a cycle of four
+    ([3.0] + [2.0e3, 1.0e3, 4.0e3] * 2 + [2.0e3, 1.0e3], 0),  # one period and a bit: too soon to tell
+    ([v for k in range(8) for v in (2.4e4 * 1.05 ** k, 1.1e4)], 0),  # each period 5 % on: not the same states
+    ([6.0e4] * 12, 0),  # the same change again: a drift, left to the stall test
+    (list(np.geomspace(1e3, 1e-3, 20)), 0),  # converging
+])
+def test_a_cycle_is_a_repeat_of_the_period_before(changes, period):
+    """model/coupling.cycle_period, on sequences built with a known period (or none)."""
+    assert coupling.cycle_period(changes) == period
+
+
 def test_a_steady_start_that_fails_says_why():
     series = lc.transient(lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop",
                                                   "solver.max_iterations": 1}), progress=False)

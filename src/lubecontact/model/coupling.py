@@ -113,6 +113,34 @@ NEWTON_STALL_ITERATIONS = 3
 # 101 x 101 (none, 50, 20).
 STEP_STALL_ITERATIONS = 50
 
+# A time step's mixed iteration cycles when the last CYCLE_REPEATS periods of its relative
+# deformation change each repeat the value one period earlier within CYCLE_TOLERANCE, for a
+# period of 2 to MAX_CYCLE_PERIOD iterations: the cavitated set flips between the same states
+# and the iteration does not end, so the step fails there, as at a stall, cheaply. A period
+# of 1 (the same change again) is a drift, which may still end: it waits for the stall test.
+# Traced on the Table 1 stop's 101 x 21 member of the accuracy study (bench/EXPERIMENTS.md,
+# eighteenth session): each of its 15 failed step solves ran 51-59 iterations (3-5 s), most
+# of them cycling with a period of 2 or 4 from iteration 12-32. On the figure build's seven
+# costliest stops (952 step solves) the paths stay the same step for step (no solve that
+# would converge is cut), and their CPU time fell from 198 to 138 s (65 to 31 s on that one).
+MAX_CYCLE_PERIOD = 6
+CYCLE_REPEATS = 2
+CYCLE_TOLERANCE = 0.02
+
+
+def cycle_period(changes: list[float]) -> int:
+    """The period, 2 to MAX_CYCLE_PERIOD iterations, with which the last values of
+    ``changes`` (an iteration's relative changes, newest last) repeat; 0 where they do not."""
+    values = np.asarray(changes, dtype=float)
+    for period in range(1, MAX_CYCLE_PERIOD + 1):
+        span = CYCLE_REPEATS * period
+        if len(values) < span + period:
+            break
+        recent, earlier = values[-span:], values[-span - period:-period]
+        if np.all(np.abs(recent - earlier) <= CYCLE_TOLERANCE * recent):
+            return 0 if period == 1 else period  # a period of 1 is a drift
+    return 0
+
 
 # While the deformation is still far from converged, the force balance need not be exact:
 # the inner tolerance follows the outer progress (an inexact Newton-type schedule) and is
@@ -205,6 +233,7 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
         cavitated, pressure_guess = initial.cavitated, initial.pressure
     deformation_step, mixer = deformation_stepper(model)
     smallest_change, stalled = np.inf, 0
+    changes = []  # a time step's relative deformation changes (cycle_period)
     restart = (delta.copy(), z, stiffness, cavitated, pressure_guess)
     change = 0.0
     balance_tol = tol if model.deformation is None else LOOSEST_BALANCE_TOLERANCE
@@ -242,6 +271,13 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
                 smallest_change, stalled = relative_change, 0
             else:
                 stalled += 1
+            if mixer is not None and model.squeeze is not None:
+                changes.append(relative_change)
+                period = cycle_period(changes)
+                if period:
+                    failure = (f"the time step's deformation iteration cycles with a period of {period} iterations "
+                               f"(its relative change repeats at {relative_change:.3g})")
+                    break
             if mixer is not None and model.squeeze is not None and stalled >= STEP_STALL_ITERATIONS:
                 failure = (f"the time step's deformation iteration stalled: its relative change has not halved in "
                            f"{stalled} iterations (now {relative_change:.3g}, smallest {smallest_change:.3g})")
