@@ -204,6 +204,18 @@ def test_a_solve_that_leaves_no_state_is_not_converged_not_a_bug(tmp_path, capsy
     assert not (tmp_path / "x.nc").exists()
 
 
+def test_a_point_that_does_not_converge_says_why_on_the_terminal(tmp_path, capsys):
+    """A smooth 51 x 51 Table 1 contact at 0.01 m/s has no positive film at the cylinder's ends
+    (tests/test_hard_cases.py, smooth_default_mesh): exit 3, the file written, and the reason
+    with what to do about it on stderr, not only in the file."""
+    out = tmp_path / "smooth.nc"
+    code, _, err = run(capsys, "solve", SCENE, "--set", "effects.asperity_contact=false",
+                       "--set", "operating.speed=0.01", "--out", str(out))
+    assert code == cli.EXIT_NOT_CONVERGED and out.exists()
+    assert "did NOT converge" in err and "force balance did not converge" in err
+    assert "thinnest at its ends" in err and "mesh.ny: 1" in err
+
+
 def test_interrupt_and_a_failed_write_are_one_line_each(tmp_path, capsys, monkeypatch):
     import errno
 

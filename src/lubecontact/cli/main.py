@@ -242,6 +242,7 @@ def _run(args) -> int:
                   f"written", file=sys.stderr)
             return EXIT_NOT_CONVERGED
         write, effects_run, values = result.write, result.attrs["effects_run"], result.scalars
+        why = result.attrs["notes"]  # a point that did not converge says why (the file has it too)
         speeds, validity_notes = [scene.operating.speed], result.attrs["validity_notes"]
     elif args.command == "transient":
         from lubecontact.cli.transient import run_transient
@@ -255,6 +256,7 @@ def _run(args) -> int:
         write, effects_run = (lambda path: write_case(ds, path)), ds.attrs["effects_run"]
         values = {name: ds[name].values for name in (*_SHOWN, *_JUDGED)}
         speeds, validity_notes = ds["speed"].values, ds.attrs["validity_notes"]
+        why = "each point's notes are in the file"
     try:
         write(out)
     except OSError as err:
@@ -264,7 +266,7 @@ def _run(args) -> int:
     print("\n".join(_findings(values, speeds, validity_notes, scene.interface.open_resistance)))
     print(f"wrote {args.out}")
     if not _converged(values):
-        print("lubecontact: the solve did NOT converge (converged = 0 in the file)", file=sys.stderr)
+        print(f"lubecontact: the solve did NOT converge (converged = 0 in the file): {why}", file=sys.stderr)
         return EXIT_NOT_CONVERGED
     return EXIT_OK
 
