@@ -511,17 +511,18 @@ def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch
     assert series["converged"].item() == 1, series.attrs["notes"]
 
 
-@pytest.mark.parametrize("changes, period", [
-    ([5.0, 1.0e-2] + [2.4e4, 1.1e4] * 4, 2),  # alternating between two states (a 101 x 21 stop's failure)
-    ([7.0, 9.0] + [5.6e4, 2.4e4, 5.8e4, 5.5e4] * 3, 4),  # a cycle of four
-    ([3.0] + [2.0e3, 1.0e3, 4.0e3] * 2 + [2.0e3, 1.0e3], 0),  # one period and a bit: too soon to tell
-    ([v for k in range(8) for v in (2.4e4 * 1.05 ** k, 1.1e4)], 0),  # each period 5 % on: not the same states
-    ([6.0e4] * 12, 0),  # the same change again: a drift, left to the stall test
-    (list(np.geomspace(1e3, 1e-3, 20)), 0),  # converging
+@pytest.mark.parametrize("changes, turning, period", [
+    ([5.0, 1.0e-2] + [2.4e4, 1.1e4] * 4, False, 2),  # alternating sizes (a 101 x 21 stop's failure)
+    ([7.0, 9.0] + [5.6e4, 2.4e4, 5.8e4, 5.5e4] * 3, False, 4),  # a cycle of four
+    ([3.0] + [2.0e3, 1.0e3, 4.0e3] * 2 + [2.0e3, 1.0e3], False, 0),  # one period and a bit: too soon to tell
+    ([v for k in range(8) for v in (2.4e4 * 1.05 ** k, 1.1e4)], False, 0),  # each period 5 % on: not the same states
+    ([0.5] + [0.882, 0.887] * 6, True, 1),  # the same size again, each change turning back: two states
+    ([6.0e4] * 12, False, 0),  # the same size again in the same direction: a drift, left to the stall test
+    (list(np.geomspace(1e3, 1e-3, 20)), True, 0),  # converging
 ])
-def test_a_cycle_is_a_repeat_of_the_period_before(changes, period):
+def test_a_cycle_is_a_repeat_of_the_period_before(changes, turning, period):
     """model/coupling.cycle_period, on sequences built with a known period (or none)."""
-    assert coupling.cycle_period(changes) == period
+    assert coupling.cycle_period(changes, [turning] * len(changes)) == period
 
 
 def test_a_steady_start_that_fails_says_why():

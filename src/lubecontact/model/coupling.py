@@ -115,22 +115,29 @@ STEP_STALL_ITERATIONS = 50
 
 # A time step's mixed iteration cycles when the last CYCLE_REPEATS periods of its relative
 # deformation change each repeat the value one period earlier within CYCLE_TOLERANCE, for a
-# period of 2 to MAX_CYCLE_PERIOD iterations: the cavitated set flips between the same states
-# and the iteration does not end, so the step fails there, as at a stall, cheaply. A period
-# of 1 (the same change again) is a drift, which may still end: it waits for the stall test.
+# period of 1 to MAX_CYCLE_PERIOD iterations: the cavitated set flips between the same states
+# and the iteration does not end, so the step fails there, as at a stall, cheaply. A change of
+# the same size again (a period of 1) is a cycle only where each change turns back on the one
+# before (the state alternating between two); one that keeps its direction is a drift, which
+# may still end, and waits for the stall test.
 # Traced on the Table 1 stop's 101 x 21 member of the accuracy study (bench/EXPERIMENTS.md,
 # eighteenth session): each of its 15 failed step solves ran 51-59 iterations (3-5 s), most
-# of them cycling with a period of 2 or 4 from iteration 12-32. On the figure build's seven
-# costliest stops (952 step solves) the paths stay the same step for step (no solve that
-# would converge is cut), and their CPU time fell from 198 to 138 s (65 to 31 s on that one).
+# of them cycling with a period of 2 or 4 from iteration 12-32, and the 51 x 51 member at 5e-4
+# stalled after 83 iterations alternating between two states (changes of 0.882 and 0.887 of
+# the deformation's range, each at a cosine of -0.86 to the one before). On the figure
+# build's seven costliest stops (952 step solves) and the 101 x 101 stop the paths stay the
+# same step for step (no solve that would converge is cut), and the seven's CPU time fell
+# from 198 to 131 s (65 to 28 s on the 101 x 21 member, 18 to 15 s on that 51 x 51 one).
 MAX_CYCLE_PERIOD = 6
 CYCLE_REPEATS = 2
 CYCLE_TOLERANCE = 0.02
 
 
-def cycle_period(changes: list[float]) -> int:
-    """The period, 2 to MAX_CYCLE_PERIOD iterations, with which the last values of
-    ``changes`` (an iteration's relative changes, newest last) repeat; 0 where they do not."""
+def cycle_period(changes: list[float], turns: list[bool]) -> int:
+    """The period, in iterations, with which the last values of ``changes`` (an iteration's
+    relative changes, newest last) repeat; 0 where they do not, or where they repeat with a
+    period of 1 while the changes keep their direction (``turns``: whether each change turned
+    back on the one before, its cosine with it negative), a drift."""
     values = np.asarray(changes, dtype=float)
     for period in range(1, MAX_CYCLE_PERIOD + 1):
         span = CYCLE_REPEATS * period
@@ -138,7 +145,7 @@ def cycle_period(changes: list[float]) -> int:
             break
         recent, earlier = values[-span:], values[-span - period:-period]
         if np.all(np.abs(recent - earlier) <= CYCLE_TOLERANCE * recent):
-            return 0 if period == 1 else period  # a period of 1 is a drift
+            return period if period > 1 or all(turns[-span:]) else 0
     return 0
 
 
@@ -233,7 +240,7 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
         cavitated, pressure_guess = initial.cavitated, initial.pressure
     deformation_step, mixer = deformation_stepper(model)
     smallest_change, stalled = np.inf, 0
-    changes = []  # a time step's relative deformation changes (cycle_period)
+    changes, turns, last_change = [], [], None  # a time step's deformation changes (cycle_period)
     restart = (delta.copy(), z, stiffness, cavitated, pressure_guess)
     change = 0.0
     balance_tol = tol if model.deformation is None else LOOSEST_BALANCE_TOLERANCE
@@ -272,11 +279,15 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
             else:
                 stalled += 1
             if mixer is not None and model.squeeze is not None:
+                step_change = (new_delta - delta).ravel()
+                turns.append(last_change is not None and float(np.dot(step_change, last_change)) < 0.0)
                 changes.append(relative_change)
-                period = cycle_period(changes)
+                last_change = step_change
+                period = cycle_period(changes, turns)
                 if period:
-                    failure = (f"the time step's deformation iteration cycles with a period of {period} iterations "
-                               f"(its relative change repeats at {relative_change:.3g})")
+                    how = (f"cycles with a period of {period} iterations" if period > 1 else
+                           "alternates between two states (each change turns back on the one before)")
+                    failure = f"the time step's deformation iteration {how}: its relative change repeats at {relative_change:.3g}"
                     break
             if mixer is not None and model.squeeze is not None and stalled >= STEP_STALL_ITERATIONS:
                 failure = (f"the time step's deformation iteration stalled: its relative change has not halved in "
