@@ -179,3 +179,29 @@ def test_the_near_field_preconditioner_inverts_the_reduced_system_when_the_near_
     monkeypatch.setattr(mn, "NEAR_FIELD_RADIUS", 2)
     approximate = mn.NearFieldPreconditioner.build(model, lin, weight).apply(reduced @ y)
     assert not np.allclose(approximate, y, rtol=0, atol=1e-3)
+
+
+def test_a_solve_that_stops_says_why_each_solver_stopped(monkeypatch):
+    """Never silent: where the nested solve runs out of iterations without a failure of its own
+    and the Newton that finishes it fails too, the notes say NOT CONVERGED with the nested
+    solver's iterations and last deformation change, then the Newton's reason (it was
+    converged = 0 with neither in the figure build: Fig. 12 at F = 30 N)."""
+    def failing_newton(model, initial=None, tolerance=None, continuation=True):
+        raise mn.SolveError("no descent (simulated)")
+
+    monkeypatch.setattr(mn, "monolithic_solve", failing_newton)
+    ds = lc.solve(lc.load_scene("config/scenes/table1.yaml", {"mesh.nx": 21, "mesh.ny": 21,
+                                                                "solver.max_iterations": 1}))
+    notes = ds.attrs["notes"]
+    assert ds["converged"].item() == 0
+    assert "NOT CONVERGED: 1 iterations without its deformation change falling below the tolerance" in notes
+    assert "then one Newton from its last state: no descent (simulated)" in notes
+
+
+def test_a_solve_no_newton_can_finish_still_says_it_stopped():
+    """JFO cavitation has no Newton (monolithic_newton.finishes): a nested solve that stops at
+    its iteration limit says so in words."""
+    ds = lc.solve(lc.load_scene("config/scenes/table1.yaml", {"mesh.nx": 21, "mesh.ny": 21, "effects.cavitation": "jfo",
+                                                                "solver.max_iterations": 1}))
+    assert ds["converged"].item() == 0
+    assert "NOT CONVERGED: 1 iterations without meeting the tolerances" in ds.attrs["notes"]

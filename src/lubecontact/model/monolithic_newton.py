@@ -671,24 +671,28 @@ def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
     """(state, diagnostics, note) where a nested solve stopped without meeting its
     tolerances: one Newton from its last state (no continuation: cheap), and on a mesh the
     dense step serves (line contacts, DENSE_NODES) also a cold one with load continuation;
-    the first that converges, with a note saying so. Else the nested solve's own, and an
-    empty note."""
+    the first that converges, with a note saying so. Else the nested solve's own state, its
+    failure naming why each stopped (the nested solver's reason first), and an empty note."""
     if diagnostics.converged or not finishes(model):
         return state, diagnostics, ""
     attempts = [("from its last state", WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure), False)]
     if dense_step_serves(model):
         attempts.append(("from a cold start", None, True))
-    why = diagnostics.failure or "its deformation change did not fall below the tolerance"
+    why = diagnostics.failure or (f"{diagnostics.iterations} iterations without its deformation change falling below "
+                                  f"the tolerance: the last was {diagnostics.deformation_residual:.3g} m")
+    newton_failures = []
     for how, start, continuation in attempts:
         try:
             finished, newton_diagnostics = monolithic_solve(model, start, continuation=continuation)
-        except SolveError:
+        except SolveError as err:
+            newton_failures.append(f"one Newton {how}: {err}")
             continue
         if newton_diagnostics.converged:
             return finished, newton_diagnostics, (
                 f"the nested solver stopped after {diagnostics.iterations} iterations ({why}); one Newton {how} "
                 f"converged in {newton_diagnostics.iterations} (solver.method newton, docs/physics.md section 20)")
-    return state, diagnostics, ""
+        newton_failures.append(f"one Newton {how}: {newton_diagnostics.failure}")
+    return state, dataclasses.replace(diagnostics, failure="; then ".join([why, *newton_failures])), ""
 
 
 # A grease's Poiseuille coefficient depends on the pressure gradient, which the nested

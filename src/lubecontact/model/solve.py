@@ -60,8 +60,10 @@ def solve_case(scene, fields: bool = False, initial: WarmStart | None = None):
         model = Model.assemble(scene, contact=prepared.contact)
         state, diag, solver_notes = steady_solve(model, initial)
         notes.extend(solver_notes)
-    if diag.failure:
-        notes.append("NOT CONVERGED: " + diag.failure)
+    if diag.failure or not diag.converged:  # never silent: a solve that stopped says why
+        notes.append("NOT CONVERGED: " + (diag.failure or f"{diag.iterations} iterations without meeting the "
+                                                          f"tolerances (force residual {diag.force_residual:.3g} N, "
+                                                          f"deformation change {diag.deformation_residual:.3g} m)"))
         if model.contact is None and model.hydrodynamic and not model.mesh.line:
             notes.append(SMOOTH_ENDS)
     outputs, output_notes = point_outputs(model, state)
