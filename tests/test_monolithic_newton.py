@@ -194,7 +194,7 @@ def test_a_solve_that_stops_says_why_each_solver_stopped(monkeypatch):
                                                                 "solver.max_iterations": 1}))
     notes = ds.attrs["notes"]
     assert ds["converged"].item() == 0
-    assert "NOT CONVERGED: 1 iterations without its deformation change falling below the tolerance" in notes
+    assert "NOT CONVERGED: 1 iteration(s) without its deformation change falling below the tolerance" in notes
     assert "then one Newton from its last state: no descent (simulated)" in notes
 
 
@@ -204,4 +204,4 @@ def test_a_solve_no_newton_can_finish_still_says_it_stopped():
     ds = lc.solve(lc.load_scene("config/scenes/table1.yaml", {"mesh.nx": 21, "mesh.ny": 21, "effects.cavitation": "jfo",
                                                                 "solver.max_iterations": 1}))
     assert ds["converged"].item() == 0
-    assert "NOT CONVERGED: 1 iterations without meeting the tolerances" in ds.attrs["notes"]
+    assert "NOT CONVERGED: 1 iteration(s) without meeting the tolerances" in ds.attrs["notes"]

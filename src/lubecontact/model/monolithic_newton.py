@@ -678,7 +678,7 @@ def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
     attempts = [("from its last state", WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure), False)]
     if dense_step_serves(model):
         attempts.append(("from a cold start", None, True))
-    why = diagnostics.failure or (f"{diagnostics.iterations} iterations without its deformation change falling below "
+    why = diagnostics.failure or (f"{diagnostics.iterations} iteration(s) without its deformation change falling below "
                                   f"the tolerance: the last was {diagnostics.deformation_residual:.3g} m")
     newton_failures = []
     for how, start, continuation in attempts:

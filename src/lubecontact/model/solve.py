@@ -61,7 +61,7 @@ def solve_case(scene, fields: bool = False, initial: WarmStart | None = None):
         state, diag, solver_notes = steady_solve(model, initial)
         notes.extend(solver_notes)
     if diag.failure or not diag.converged:  # never silent: a solve that stopped says why
-        notes.append("NOT CONVERGED: " + (diag.failure or f"{diag.iterations} iterations without meeting the "
+        notes.append("NOT CONVERGED: " + (diag.failure or f"{diag.iterations} iteration(s) without meeting the "
                                                           f"tolerances (force residual {diag.force_residual:.3g} N, "
                                                           f"deformation change {diag.deformation_residual:.3g} m)"))
         if model.contact is None and model.hydrodynamic and not model.mesh.line:
