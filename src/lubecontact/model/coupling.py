@@ -260,10 +260,11 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
                 deformation_converged = True
                 break
             new_delta = model.deformation(state.total_pressure)
-            change = float(np.max(np.abs(new_delta - delta)))
+            correction = new_delta - delta  # what the fixed point asks of the deformation, m
+            change = float(np.max(np.abs(correction)))
             relative_change = change / max(float(np.ptp(new_delta)), 1e-15)
             if (relative_change <= tol if model.squeeze is None
-                    else model.squeeze.settled(state.film, new_delta - delta)):
+                    else model.squeeze.settled(state.film, correction)):
                 deformation_converged = True
                 break
             if backtracking is not None:
@@ -278,21 +279,20 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
                 smallest_change, stalled = relative_change, 0
             else:
                 stalled += 1
-            if mixer is not None and model.squeeze is not None:
-                step_change = (new_delta - delta).ravel()
-                turns.append(last_change is not None and float(np.dot(step_change, last_change)) < 0.0)
+            if mixer is not None and model.squeeze is not None:  # a time step: it fails where it cycles or stalls
+                turns.append(last_change is not None and float(np.dot(correction.ravel(), last_change)) < 0.0)
                 changes.append(relative_change)
-                last_change = step_change
+                last_change = correction.ravel()
                 period = cycle_period(changes, turns)
                 if period:
                     how = (f"cycles with a period of {period} iterations" if period > 1 else
                            "alternates between two states (each change turns back on the one before)")
                     failure = f"the time step's deformation iteration {how}: its relative change repeats at {relative_change:.3g}"
                     break
-            if mixer is not None and model.squeeze is not None and stalled >= STEP_STALL_ITERATIONS:
-                failure = (f"the time step's deformation iteration stalled: its relative change has not halved in "
-                           f"{stalled} iterations (now {relative_change:.3g}, smallest {smallest_change:.3g})")
-                break
+                if stalled >= STEP_STALL_ITERATIONS:
+                    failure = (f"the time step's deformation iteration stalled: its relative change has not halved "
+                               f"in {stalled} iterations (now {relative_change:.3g}, smallest {smallest_change:.3g})")
+                    break
             if mixer is None and stalled >= NEWTON_STALL_ITERATIONS:
                 if backtracking is None:
                     # the coupled Newton steps stalled: near a fold the cavitated set can
@@ -310,7 +310,7 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
                     delta, z, stiffness, cavitated, pressure_guess = restart[0].copy(), *restart[1:]
                     reynolds, balance_tol = None, LOOSEST_BALANCE_TOLERANCE
                     continue
-            step = deformation_step(model, state, new_delta - delta)
+            step = deformation_step(model, state, correction)
             if backtracking is not None:
                 backtracking.accept(delta, relative_change, step, state)
             new_delta = delta + step if mixer is None else mixer.step(delta, delta + step)
