@@ -201,7 +201,7 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
         f"that on each, {'largest' if abs(tight['grease']) > max(abs(tight['table1']), abs(tight['vg100'])) else 'not largest'} "
         "on the grease. The step's error is a mean over the nodes; at rest the steps leave the long inlet a fast, "
         "viscous motion needs, whose films barely move and would dilute it (docs/physics.md section 14, \"The "
-        "domain at rest\"; \"What accuracy costs\" gives Table 1's by its tolerance ladder).",
+        "mesh at rest\"; \"What accuracy costs\" gives Table 1's by its tolerance ladder).",
     ])
     mesh = ", ".join(seconds(lines[n]["reconnect"]) if n != 31 else
                      f"<!-- measured:line31 -->{lines[n]['reconnect'] * 1e3:.3g}<!-- /measured --> ms" for n in LINE_NODES[:-1])
@@ -375,9 +375,20 @@ def transient_accuracy_block(table_file: Path | None = None, log=print) -> str:
         """The caveat of a ladder outside the asymptotic range (studies/accuracy.richardson)."""
         return "" if int(table[f"{part}_asymptotic"]) else "; not in the asymptotic range: extrapolation and errors are rough"
 
+    refined = ""
+    if "rest_refinement" in table.coords:
+        on = f"{table['rest_refinement_nx'].values[0]} × {table['rest_refinement_ny'].values[0]}"
+        refined = (f" Refining only the mesh at rest (`motion.rest_refinement`), where the film drains, on {on}: "
+                   + ", ".join(f"{int(r)} times finer {seconds(t)} ({num(100 * e)} % low, {num(w)} s)"
+                               for r, t, e, w in zip(table["rest_refinement"].values,
+                                                     table["rest_refinement_reconnect_time"].values,
+                                                     table["rest_refinement_error"].values,
+                                                     table["rest_refinement_run_time"].values))
+                   + f"; extrapolated {seconds(float(table['rest_refinement_extrapolated']))} (observed order "
+                     f"{float(table['rest_refinement_order']):.2g}{rough('rest_refinement')}).")
     return (f"The Table 1 stop's reconnect time (`results/data/transient_accuracy.md`, {when}; wall time of each run): "
             f"{members}; extrapolated {seconds(float(table['mesh_extrapolated']))} (observed order "
-            f"{float(table['mesh_order']):.2g}{rough('mesh')}). {five} On the default 51² mesh, the time-step "
+            f"{float(table['mesh_order']):.2g}{rough('mesh')}). {five}{refined} On the default 51² mesh, the time-step "
             f"tolerance's own error at its default ({default:g}) is {num(100 * tol_error)} % against its extrapolation "
             f"{seconds(float(table['tolerance_extrapolated']))} (observed order {float(table['tolerance_order']):.2g}, "
             f"over {', '.join(f'{t:g}' for t in sorted(tolerances, reverse=True))}{rough('tolerance')}).")

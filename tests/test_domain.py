@@ -1,6 +1,7 @@
 """The automatic domain follows the film (docs/physics.md section 17): lengthening the inlet
 further moves the resistance by < 1 %, at 1 and 10 m/s, where main's fixed inlet did not."""
 
+import numpy as np
 import pytest
 
 import lubecontact as lc
@@ -10,7 +11,7 @@ from lubecontact.numerics.mesh import (
     build_mesh,
     domain_x,
     nodes_x,
-    without_inlet_columns,
+    rest_mesh,
 )
 
 TABLE1 = "config/scenes/table1.yaml"
@@ -62,13 +63,20 @@ def test_slow_cases_keep_their_mesh():
     assert mesh.x[0] > -0.9 * fast.geometry.radius
 
 
-def test_the_mesh_at_rest_is_the_last_columns_of_the_mesh_in_motion():
-    """A stop's steps at rest run on the automatic domain of speed 0 (unsteady/integrator
-    rest_domain): the mesh built for 1 m/s without its extra inlet columns has the nodes that
-    build_mesh gives the scene at rest, so fields restrict by slicing."""
-    moving = build_mesh(lc.load_scene(TABLE1, {"operating.speed": 1.0}))
-    resting = build_mesh(lc.load_scene(TABLE1, {"operating.speed": 0.0}))
-    trimmed = without_inlet_columns(moving, moving.nx - resting.nx)
-    assert moving.nx > resting.nx and trimmed.shape == resting.shape
-    assert trimmed.x == pytest.approx(resting.x, rel=0, abs=1e-12 * resting.dx)
-    assert trimmed.nodal_area == pytest.approx(resting.nodal_area, rel=1e-9)
+def test_the_mesh_at_rest_is_symmetric_and_finer_within_the_mesh_in_motion():
+    """A stop's steps at rest run on numerics/mesh.rest_mesh of the motion's mesh: x on
+    [-x_max, x_max] (the gap x^2/2R is symmetric, and nothing is entrained), at
+    motion.rest_refinement times its nodes per metre, the same rows; every
+    rest_refinement-th of its nodes is a node of the motion's mesh (with no refinement a
+    transfer interpolates nothing)."""
+    for nodes in (51, 15):
+        moving = build_mesh(lc.load_scene(TABLE1, {"operating.speed": 1.0, "mesh.nx": nodes}))
+        for refinement in (1, 2, 4):
+            resting = rest_mesh(moving, refinement)
+            assert abs(resting.x[0] + moving.x[-1]) <= 0.5 * moving.dx and resting.x[-1] == moving.x[-1]
+            assert resting.dx == pytest.approx(moving.dx / refinement, rel=1e-9)
+            assert resting.x[0] > moving.x[0] and (resting.y == moving.y).all()
+            on_rest = np.abs(resting.x[::refinement, None] - moving.x[None, :]).min(axis=1)
+            assert on_rest.max() < 1e-9 * moving.dx
+
+

@@ -29,6 +29,8 @@ def ladder(meshes=(31, 51, 71, 101), tolerances=(1e-3, 5e-4, 2.5e-4), **override
         if case["part"] == "mesh":  # second order in h = 1/(n - 1): t = T (1 - 30 h^2)
             h = 1.0 / (case["value"] - 1)
             data.append(run(LIMIT * (1.0 - 30.0 * h**2), case["value"] ** 2 / 300.0))
+        elif case["part"] == "rest_refinement":  # first order in the spacing at rest, 1/r: t = T (1 - 0.1/r)
+            data.append(run(LIMIT * (1.0 - 0.1 / case["value"]), 5.0 * case["value"]))
         else:  # BDF2's global error ~ tol^(2/3): t = T (1 - 5 tol^(2/3))
             data.append(run(LIMIT * (1.0 - 5.0 * case["value"] ** (2.0 / 3.0)), 3e-3 / case["value"]))
     return cases, data
@@ -55,11 +57,29 @@ def test_the_ladder_plans_square_meshes_then_tolerances_on_one_mesh():
     assert "| 31 | 21 |" in markdown(table)
 
 
+def test_the_refinement_ladder_refines_the_mesh_at_rest_and_extrapolates_in_its_spacing():
+    """A third ladder (motion.rest_refinement on one mesh) is planned after the others and
+    extrapolated in the spacing at rest, 1/r: a first-order sequence gives its limit and order 1."""
+    cases, data = ladder(rest_refinements={"mesh": 51, "mesh_ny": 21, "values": [4, 1, 2]})
+    refined = [c for c in cases if c["part"] == "rest_refinement"]
+    assert [c["value"] for c in refined] == [1, 2, 4]
+    assert refined[0]["overrides"] == {"mesh.nx": 51, "mesh.ny": 21, "motion.rest_refinement": 1}
+    assert refined[-1]["label"] == "mesh at rest 4 times finer, 51 \u00d7 21 nodes"
+    table = ladder_table(cases, data)
+    assert float(table["rest_refinement_extrapolated"]) == pytest.approx(LIMIT, rel=1e-9)
+    assert float(table["rest_refinement_order"]) == pytest.approx(1.0, rel=1e-6)
+    np.testing.assert_allclose(table["rest_refinement_error"].values, 0.1 / np.array([1.0, 2.0, 4.0]), rtol=1e-6)
+    assert "## rest refinement ladder" in markdown(table) and "| motion.rest_refinement |" in markdown(table)
+    assert len(plot_transient_accuracy(table, "three ladders").axes) == 2
+
+
 @pytest.mark.parametrize("bad, words", [
     ({"meshes": [31, 51, 51]}, "three different meshes"),
     ({"meshes": [31, 51, 71.5]}, "whole numbers"),
     ({"meshes": [31, 51, 71], "mesh_ny": 2}, "mesh_ny must be whole numbers"),
     ({"meshes": [31, 51, 71], "tolerances": {"mesh": 51, "values": [1e-3, 0.0, 1e-4]}}, "positive"),
+    ({"meshes": [31, 51, 71], "rest_refinements": {"mesh": 51, "values": [1, 2, 2.5]}}, "whole numbers >= 1"),
+    ({"meshes": [31, 51, 71], "rest_refinements": {"mesh": 51, "values": [1, 2]}}, "three different"),
 ])
 def test_a_bad_ladder_is_refused_naming_the_figure(bad, words):
     with pytest.raises(ValueError, match=f"'accuracy'.*{words}"):

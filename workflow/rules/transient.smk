@@ -65,7 +65,7 @@ rule transient_figure:
 
 
 # What a reconnect time's accuracy costs: the ladder's runs -> Richardson extrapolation of
-# each ladder (meshes, time-step tolerances) -> table and figure
+# each ladder (meshes, time-step tolerances, refinements of the mesh at rest) -> table and figure
 rule transient_accuracy:
     input:
         cases=lambda w: [f"{RESULTS}/transient/{c['id']}.nc" for c in TRANSIENT_CASES[w.name]],

@@ -157,10 +157,17 @@ class Mesh:
         return np.outer(wy, wx)
 
 
-def without_inlet_columns(mesh: Mesh, columns: int) -> Mesh:
-    """``mesh`` without its first ``columns`` columns (the upstream end): the same nodes
-    downstream, so fields on ``mesh`` restrict to it by slicing [:, columns:]."""
-    return Mesh(x=mesh.x[columns:], y=mesh.y, length=mesh.length)
+def rest_mesh(mesh: Mesh, refinement: int) -> Mesh:
+    """The mesh a motion's steps go on with at rest (unsteady/integrator.TimeIntegrator.rest_domain,
+    docs/physics.md section 14): x on [-x_max, x_max], symmetric about the line of contact as
+    the gap x^2/2R is (nothing is entrained at rest, so the inlet needs no more length than
+    the outlet), at ``refinement`` times the nodes per metre of ``mesh``; y as in ``mesh``.
+    Its first node is the node of ``mesh`` nearest -x_max (within ``mesh``), so every node
+    of ``mesh`` on it is one of its nodes."""
+    x_max = float(mesh.x[-1])
+    cells = min(int(round(2.0 * x_max / mesh.dx)), mesh.nx - 1)
+    x = np.linspace(float(mesh.x[-1 - cells]), x_max, cells * refinement + 1)
+    return Mesh(x=x, y=mesh.y, length=mesh.length)
 
 
 def build_mesh(scene) -> Mesh:

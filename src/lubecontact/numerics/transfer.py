@@ -1,11 +1,13 @@
-"""Transfer between nested meshes over the same domain: the mesh with every other node, and
-bilinear interpolation of a nodal field from one mesh to another (nested iteration of the
-Reynolds solve and of the coupled solve, warm starts of a sweep).
+"""Transfer between meshes: the mesh with every other node, bilinear interpolation of a
+nodal field from one mesh to another over the same domain (nested iteration of the Reynolds
+solve and of the coupled solve, warm starts of a sweep), and cubic-spline interpolation
+along x onto a mesh within the domain (a transient's levels onto its mesh at rest).
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 from lubecontact.numerics.mesh import Mesh
 
@@ -35,3 +37,15 @@ def interpolate_field(field, source, target):
         return lower + t.reshape(shape) * (upper - lower)
 
     return along(along(field, source.x, target.x, 1), source.y, target.y, 0)
+
+
+def spline_along_x(field, source, target):
+    """A (ny, nx) field on ``source`` at the nodes of ``target``, whose rows are those of
+    ``source`` and whose x lie within its domain: the not-a-knot cubic spline through each
+    row (exact for cubics; error O(dx^4) for a smooth field, where bilinear interpolation's is
+    O(dx^2)). For the elastic deformation, whose curvature reaches ~1/R over the contact, where
+    linear interpolation would leave film errors of up to dx^2/8R (12 nm on the Table 1
+    contact's 51-node mesh, dx = 32 um, R = 10 mm), beyond a time step's error weight."""
+    if source.nx < 4:
+        return interpolate_field(field, source, target)
+    return CubicSpline(source.x, field, axis=-1)(target.x)

@@ -54,13 +54,14 @@ def plot_accuracy_cost(table: xr.Dataset):
 def plot_transient_accuracy(table: xr.Dataset, title: str):
     """Figure ``transient_accuracy`` (studies/transient_accuracy.py): (a) the reconnect time
     on each mesh of the ladder with its Richardson extrapolation and the grid convergence
-    index as a band; (b) the relative error of every ladder member (meshes, tolerances)
-    against its ladder's extrapolation versus the wall time of its run, the 5 % and 1 %
+    index as a band; (b) the relative error of every ladder member (meshes, tolerances,
+    refinements of the mesh at rest) against its ladder's extrapolation versus the wall time of its run, the 5 % and 1 %
     levels dotted. A ladder without extrapolation (a run that did not converge or never
     reconnected) shows its reconnect times only."""
     fig = Figure(figsize=(10.0, 4.4), layout="constrained")
     left, right = fig.subplots(1, 2)
-    styles = {"mesh": ("C0", "o", "meshes (nodes along the sliding direction)"), "tolerance": ("C1", "s", "time-step tolerance")}
+    styles = {"mesh": ("C0", "o", "meshes (nodes along the sliding direction)"), "tolerance": ("C1", "s", "time-step tolerance"),
+              "rest_refinement": ("C2", "^", "mesh at rest, times finer along the sliding direction")}
     if "mesh" in table.coords:
         nodes, times = table["mesh"].values, table["mesh_reconnect_time"].values * 1e3
         left.plot(nodes, times, "o-", color="C0", label="reconnect time on the mesh")
@@ -91,7 +92,7 @@ def plot_transient_accuracy(table: xr.Dataset, title: str):
     right.xaxis.set_minor_formatter(NullFormatter())  # within a decade the labels overlap
     right.set_xlabel("wall time of the run (s)")
     right.set_ylabel("relative error of the reconnect time (\u2013)")
-    right.legend(fontsize="small", title="points: nodes, or tolerance", title_fontsize="small")
+    right.legend(fontsize="small", title="points: nodes, tolerance, or refinement", title_fontsize="small")
     right.grid(True, which="major", alpha=0.3)
     fig.suptitle(title, fontsize="medium")
     return fig

@@ -622,20 +622,25 @@ class Motion(_Section):
     )
     vibration_seed: int = _field(0, _Integer(0), "random: seed of the phases (the same seed, the same signal)")
     shock_duration: float = _field(1.0e-3, _positive("s"), "half_sine_shock: duration of the half sine")
+    rest_refinement: int = _field(
+        1, _Integer(1),
+        "at rest, the steps go on on the contact's own domain (x in [-x_max, x_max]) with this many times the nodes "
+        "per metre along x of the motion's mesh (automatic domain only; docs/physics.md section 14)",
+    )
 
     # keys added after scenes were written: left out at their defaults (to_dict), so no hash changes
-    DYNAMICS_KEYS = ("mass", "spring_stiffness", "vibration", "vibration_acceleration", "vibration_frequency",
-                     "vibration_frequency_end", "vibration_seed", "shock_duration")
+    LATER_KEYS = ("mass", "spring_stiffness", "vibration", "vibration_acceleration", "vibration_frequency",
+                  "vibration_frequency_end", "vibration_seed", "shock_duration", "rest_refinement")
 
     def to_dict(self):
-        """None for the default motion; ``error_bar`` and the dynamics keys left out at their
-        defaults, so scenes written before them keep their hash."""
+        """None for the default motion; ``error_bar`` and the keys added later (LATER_KEYS) left
+        out at their defaults, so scenes written before them keep their hash."""
         if self == Motion():
             return None
         data = super().to_dict()
         if not self.error_bar:
             del data["error_bar"]
-        for key in self.DYNAMICS_KEYS:
+        for key in self.LATER_KEYS:
             if data[key] == getattr(Motion, key):
                 del data[key]
         return data

@@ -1,11 +1,12 @@
 """What a reconnect time's accuracy costs: the transient's part of the accuracy study.
 
 One motion (config/transient.yaml, figure ``accuracy``: the Table 1 stop from 1 m/s) runs
-on a ladder of meshes at one motion.tolerance, and on one mesh at a ladder of
-motion.tolerance (studies/transient_cases.ladder_cases plans the cases). Each ladder's
+on a ladder of meshes at one motion.tolerance, on one mesh at a ladder of motion.tolerance,
+and on one mesh at a ladder of motion.rest_refinement (its mesh at rest, where the film
+drains, refined; studies/transient_cases.ladder_cases plans the cases). Each ladder's
 reconnect time is extrapolated by Richardson with its observed order from its three finest
 members (studies/accuracy.extrapolate, Celik et al. 2008): the mesh ladder in the spacing
-h = 1/(n - 1), the tolerance ladder in the tolerance itself (variable-step BDF2's global
+h = 1/(n - 1), the refinement ladder in 1/r, the tolerance ladder in the tolerance itself (variable-step BDF2's global
 error goes as the tolerance to the power 2/3, docs/physics.md section 14; the order is
 observed, not assumed). The error of every member is |t/t_ext - 1| against its own ladder's
 extrapolation, and each member's cost is the wall time of its run (the case file's
@@ -31,14 +32,22 @@ from lubecontact.studies.accuracy import cheapest_index, extrapolate, percent
 PARTS = {
     "mesh": ("nodes along the sliding direction", "1"),
     "tolerance": ("time integrator's relative tolerance, motion.tolerance", "1"),
+    "rest_refinement": ("nodes per metre of the mesh at rest along the sliding direction, as a multiple of the "
+                        "motion's mesh, motion.rest_refinement", "1"),
 }
+# what the Markdown table's first column calls each ladder's members
+MEMBERS = {"mesh": "mesh (nodes along the sliding direction)", "tolerance": "motion.tolerance",
+           "rest_refinement": "motion.rest_refinement"}
 
 
 def spacing(part: str, values) -> np.ndarray:
     """The extrapolation's spacing of each ladder member: 1/(n - 1) of the domain for a mesh
-    of n nodes, the tolerance itself for a tolerance."""
+    of n nodes, the tolerance itself for a tolerance, 1/r of the motion's node spacing for a
+    mesh at rest r times finer."""
     values = np.asarray(values, dtype=float)
-    return 1.0 / (values - 1.0) if part == "mesh" else values
+    if part == "mesh":
+        return 1.0 / (values - 1.0)
+    return 1.0 / values if part == "rest_refinement" else values
 
 
 def ladder_table(cases: Sequence[Mapping], data: Sequence[xr.Dataset]) -> xr.Dataset:
@@ -58,6 +67,8 @@ def ladder_table(cases: Sequence[Mapping], data: Sequence[xr.Dataset]) -> xr.Dat
         values = np.array([v for v, _ in members], dtype=float)
         times = np.array([float(ds["reconnect_time"]) for _, ds in members])
         out.coords[part] = xr.DataArray(values, dims=part, attrs={"long_name": long_name, "units": units})
+        out[f"{part}_nx"] = (part, np.array([c["nx"] for _, _, c in planned]),
+                             {"long_name": "nodes along the sliding direction of the motion's mesh", "units": "1"})
         out[f"{part}_ny"] = (part, np.array([c["ny"] for _, _, c in planned]),
                              {"long_name": "nodes along the cylinder axis (1: line contact)", "units": "1"})
         _member_variables(out, part, members, times)
@@ -117,8 +128,7 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.05, 0.01)) -> str:
     for part in PARTS:
         if part not in table.coords:
             continue
-        name = "mesh (nodes along the sliding direction)" if part == "mesh" else "motion.tolerance"
-        lines += [f"## {part} ladder", "", f"| {name} | nodes along the cylinder axis | reconnect time (ms) | error | "
+        lines += [f"## {part.replace('_', ' ')} ladder", "", f"| {MEMBERS[part]} | nodes along the cylinder axis | reconnect time (ms) | error | "
                   "steps (rejected) | run (s) |", "|---|---|---|---|---|---|"]
         for i, value in enumerate(table[part].values):
             lines.append(f"| {value:g} | {table[f'{part}_ny'].values[i]} | "

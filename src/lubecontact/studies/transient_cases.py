@@ -81,8 +81,10 @@ def ladder_cases(name: str, ladder: Mapping) -> list[dict]:
     (its optional set:) on every mesh of ``meshes``, nodes along the sliding direction, each
     with ``mesh_ny`` nodes along the cylinder axis (n x mesh_ny; n x n without it, n x 1 with
     ``line: true``), part "mesh", then on the square mesh ``tolerances.mesh`` at every
-    motion.tolerance of ``tolerances.values``, part "tolerance"; each case names its nodes
-    along y (``ny``) beside its overrides, which the workflow does not pass on. Each ladder needs three
+    motion.tolerance of ``tolerances.values``, part "tolerance", and on the mesh
+    ``rest_refinements.mesh`` (x ``rest_refinements.mesh_ny``) at every motion.rest_refinement
+    of ``rest_refinements.values``, part "rest_refinement"; each case names its nodes
+    along x and y (``nx``, ``ny``) beside its overrides, which the workflow does not pass on. Each ladder needs three
     different values at least (Richardson extrapolation with an observed order); ValueError
     names the figure."""
     shared = dict(ladder.get("set") or {})
@@ -103,8 +105,8 @@ def ladder_cases(name: str, ladder: Mapping) -> list[dict]:
     if len(set(meshes)) < 3:
         raise ValueError(f"transient figure {name!r}: 'meshes' needs three different meshes at least, got {meshes}")
     ladder_meshes = [(int(n), nodes(n, ladder.get("mesh_ny"))) for n in sorted(meshes)]
-    cases = [{"label": shape(mesh), "part": "mesh", "value": n, "ny": mesh["mesh.ny"], "overrides": {**shared, **mesh}}
-             for n, mesh in ladder_meshes]
+    cases = [{"label": shape(mesh), "part": "mesh", "value": n, "nx": n, "ny": mesh["mesh.ny"],
+              "overrides": {**shared, **mesh}} for n, mesh in ladder_meshes]
     tolerances = ladder.get("tolerances")
     if tolerances is not None:
         values = sorted((float(t) for t in tolerances["values"]), reverse=True)
@@ -112,8 +114,18 @@ def ladder_cases(name: str, ladder: Mapping) -> list[dict]:
             raise ValueError(f"transient figure {name!r}: 'tolerances.values' needs three different positive "
                              f"tolerances at least, got {tolerances['values']}")
         mesh = nodes(tolerances["mesh"])
-        cases += [{"label": f"tolerance {t:g}, {shape(mesh)}", "part": "tolerance", "value": t, "ny": mesh["mesh.ny"],
-                   "overrides": {**shared, **mesh, "motion.tolerance": t}} for t in values]
+        cases += [{"label": f"tolerance {t:g}, {shape(mesh)}", "part": "tolerance", "value": t, "nx": mesh["mesh.nx"],
+                   "ny": mesh["mesh.ny"], "overrides": {**shared, **mesh, "motion.tolerance": t}} for t in values]
+    refinements = ladder.get("rest_refinements")
+    if refinements is not None:
+        values = sorted(refinements["values"])
+        if len(set(values)) < 3 or any(int(r) != r or r < 1 for r in values):
+            raise ValueError(f"transient figure {name!r}: 'rest_refinements.values' needs three different whole "
+                             f"numbers >= 1 at least, got {refinements['values']}")
+        mesh = nodes(refinements["mesh"], refinements.get("mesh_ny"))
+        cases += [{"label": f"mesh at rest {int(r)} times finer, {shape(mesh)}", "part": "rest_refinement",
+                   "value": int(r), "nx": mesh["mesh.nx"], "ny": mesh["mesh.ny"],
+                   "overrides": {**shared, **mesh, "motion.rest_refinement": int(r)}} for r in values]
     return cases
 
 

@@ -26,7 +26,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from lubecontact.physics.electrical.path import electrical_path
-from lubecontact.unsteady.integrator import lagrange
+from lubecontact.unsteady.integrator import film_on, lagrange
 
 # |log R| beyond this is R = 0 or inf (exp(700) overflows nowhere before it): brentq needs finite values
 LOG_LIMIT = 700.0
@@ -76,12 +76,11 @@ class Events:
 
 def dense_film(times, films, orders, step: int, t: float) -> np.ndarray:
     """The film at t in [times[step - 1], times[step]]: the polynomial of that BDF step
-    through the levels step - order .. step (integrator.lagrange). The first steps at rest
-    on the rest domain (integrator.TimeIntegrator.rest_domain) follow levels of the motion's
-    wider mesh: their films are cut to the step's columns, the last ones, as the step read them."""
+    through the levels step - order .. step (integrator.lagrange); ``films`` of those levels
+    on one mesh (the step's: dense_resistance carries the levels before the mesh at rest onto
+    it as the step read them), the others not read."""
     used = slice(max(step - max(orders[step], 1), 0), step + 1)
-    columns = films[step].shape[-1]
-    return lagrange(list(times[used]), [film[..., -columns:] for film in films[used]], t)
+    return lagrange(list(times[used]), list(films[used]), t)
 
 
 def log_excess(resistance: float, threshold: float) -> float:
@@ -132,11 +131,12 @@ def dense_resistance(levels):
     levels[step] (integrator.Level), the film of dense_film through that instant's
     electrical path."""
     times = [level.time for level in levels]
-    films = [level.state.film for level in levels]
     orders = [level.order for level in levels]
 
     def resistance_at(step: int, t: float) -> float:
         model = levels[step].model
+        first = max(step - max(orders[step], 1), 0)
+        films = [None] * first + [film_on(level, model) for level in levels[first:step + 1]]
         film = dense_film(times, films, orders, step, t)
         return electrical_path(model.scene, model.mesh, model.contact, film).contact_resistance
 

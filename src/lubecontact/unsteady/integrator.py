@@ -50,7 +50,8 @@ from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.fluid_film import FLUID_FILM_FLOOR_SIGMAS, squeeze_content
 from lubecontact.model.model import Model, SolveError
 from lubecontact.model.monolithic_newton import dense_step_serves, monolithic_solve, needs_newton, steady_solve
-from lubecontact.numerics.mesh import build_mesh, nodes_x, without_inlet_columns
+from lubecontact.numerics.mesh import build_mesh, rest_mesh
+from lubecontact.numerics.transfer import interpolate_field, spline_along_x
 from lubecontact.unsteady.dynamics import BaseExcitation, Dynamics
 from lubecontact.unsteady.motion import MAX_STEPS
 
@@ -317,7 +318,7 @@ def sealing_pocket(levels: list[Level]) -> str:
     if draining.any():
         where, how = np.argmin(np.where(draining, own, np.inf)), "its cell still open through a face"
     else:
-        if before.state.film.shape != film.shape:  # the first step on the domain at rest
+        if before.model.mesh is not model.mesh:  # the first step on the mesh at rest
             return ""
         sealed = at_kink & (own == 0.0) & (squeeze_content(before.model, before.state.film).own > 0.0)
         if not sealed.any():
@@ -328,20 +329,35 @@ def sealing_pocket(levels: list[Level]) -> str:
             f"(h/sigma = {film[row, column] / model.contact.sigma:.3g}, {how})")
 
 
-def restricted(level: Level, columns: int, model: Model) -> Level:
-    """``level`` on the rest domain of ``model`` (its mesh: this level's without the first
-    ``columns`` columns): the fields a step reads of its last levels (the film, deformation,
-    content, pressure and cavitated set), sliced; the pressure held at 0 on the new inlet
-    boundary. Only for the steps' history: the series keeps ``level`` itself."""
-    cut = (slice(None), slice(columns, None))
+def film_on(level: Level, model: Model) -> np.ndarray:
+    """``level``'s film at the nodes of ``model``'s mesh (its own film where the meshes are
+    the same): h = h_o + z + delta (Eq. 4 and the deformation), the deformation carried by
+    cubic splines along x (numerics/transfer.spline_along_x), the undeformed gap exact."""
+    if level.model.mesh is model.mesh:
+        return level.state.film
+    delta = spline_along_x(level.state.delta, level.model.mesh, model.mesh)
+    return model.undeformed_gap + level.state.z + delta
+
+
+def transferred(level: Level, model: Model) -> Level:
+    """``level`` on the mesh at rest of ``model`` (TimeIntegrator.rest_domain): the fields a
+    step reads of its last levels, at its nodes: the film (film_on) and the content it holds
+    (the squeeze history), the deformation; the pressure and the cavitated set, a warm
+    start only, bilinear, the pressure held at 0 on the new inlet boundary. Only for the
+    steps' history: the series keeps ``level`` itself."""
+    source, target = level.model.mesh, model.mesh
     state, reynolds = level.state, level.state.reynolds
     if reynolds is not None:
-        pressure, cavitated = reynolds.pressure[cut].copy(), reynolds.cavitated[cut].copy()
+        pressure = interpolate_field(reynolds.pressure, source, target)
+        cavitated = interpolate_field(reynolds.cavitated.astype(float), source, target) > 0.5
         pressure[:, 0], cavitated[:, 0] = 0.0, False
         reynolds = dataclasses.replace(reynolds, pressure=pressure, cavitated=cavitated, factor=None)
-    state = dataclasses.replace(state, delta=state.delta[cut], film=state.film[cut], reynolds=reynolds)
-    rate = None if level.squeeze_rate is None else level.squeeze_rate[cut]
-    return dataclasses.replace(level, state=state, expected_gap=level.expected_gap[cut], model=model, squeeze_rate=rate)
+    film = film_on(level, model)
+    delta = spline_along_x(state.delta, source, target)
+    state = dataclasses.replace(state, delta=delta, film=film, reynolds=reynolds)
+    rate = None if level.squeeze_rate is None else interpolate_field(level.squeeze_rate, source, target)
+    return dataclasses.replace(level, state=state, expected_gap=squeeze_content(model, film).value, model=model,
+                               squeeze_rate=rate)
 
 
 def scene_at(scene, speed: float):
@@ -356,7 +372,7 @@ class TimeIntegrator:
         self.scene, self.history = scene, history
         self.tolerance = scene.motion.tolerance
         # one mesh while the contact moves, its automatic inlet sized for the fastest instant
-        # (mesh.py); at rest the inlet of speed 0 (rest_domain)
+        # (mesh.py); at rest the mesh at rest (rest_domain)
         mesh = build_mesh(scene_at(scene, history.peak_speed()))
         steady = Model.assemble(scene_at(scene, history.initial_speed()), mesh=mesh, contact=contact)
         self.contact = steady.contact
@@ -369,28 +385,27 @@ class TimeIntegrator:
         self.rejected = 0
         self.fallback = NewtonFallback()
 
-    def rest_domain(self) -> tuple[int, Model] | None:
-        """(columns, model) of the domain a motion goes on with at rest: the automatic inlet
-        of the scene at speed 0 (mesh.nodes_x), which the mesh of the motion, built for its
-        fastest instant, extends upstream by ``columns`` columns at the same spacing; None
-        without a rest or without such columns (an explicit mesh.x_min). At rest the inlet
-        carries no film: its pressure is the squeeze's alone, decaying as 1/h^3 where the gap
-        opens (docs/physics.md section 14); the steps move onto it once those columns carry
-        less than motion.tolerance of the load (inlet_load)."""
-        if self.history.rest_from is None:
+    def rest_domain(self) -> Model | None:
+        """The model a motion's steps go on with at rest, on its mesh at rest
+        (numerics/mesh.rest_mesh): the domain symmetric about the line of contact, within the
+        automatic domain of speed 0, at motion.rest_refinement times the nodes per metre of
+        the motion's mesh; None without a rest or on an explicit domain (mesh.x_min). The mesh
+        of the motion carries the inlet of its fastest instant; at rest nothing is entrained,
+        the squeeze film's pressure decays as 1/h^3 where the gap opens, and the contact itself
+        is what the steps must resolve (docs/physics.md section 14). The steps move onto it
+        once the nodes outside it carry less than motion.tolerance of the load (outside_load)."""
+        if self.history.rest_from is None or self.scene.mesh.x_min is not None:
             return None
-        columns = self.steady_model.mesh.nx - nodes_x(scene_at(self.scene, 0.0))
-        if columns <= 0:
-            return None
-        mesh = without_inlet_columns(self.steady_model.mesh, columns)
-        return columns, Model.assemble(scene_at(self.scene, 0.0), mesh=mesh, contact=self.contact)
+        mesh = rest_mesh(self.steady_model.mesh, self.scene.motion.rest_refinement)
+        return Model.assemble(scene_at(self.scene, 0.0), mesh=mesh, contact=self.contact)
 
-    def inlet_load(self, level: Level, columns: int) -> float:
-        """The share of the applied force that ``level``'s pressure carries on its mesh's first
-        ``columns`` columns (those the rest domain drops)."""
+    def outside_load(self, level: Level, model: Model) -> float:
+        """The share of the applied force that ``level``'s pressure carries on the nodes of its
+        mesh outside ``model``'s domain in x."""
         total = level.state.fluid_pressure + level.state.contact_pressure
-        area = level.model.mesh.nodal_area
-        return float(np.sum(total[:, :columns] * area[:, :columns])) / self.scene.operating.force
+        mesh, inside = level.model.mesh, model.mesh.x
+        outside = (mesh.x < inside[0] - 1e-9 * mesh.dx) | (mesh.x > inside[-1] + 1e-9 * mesh.dx)
+        return float(np.sum((total * mesh.nodal_area)[:, outside])) / self.scene.operating.force
 
     def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
         """The content the squeeze term differentiates in time: each cell's
@@ -574,9 +589,9 @@ class TimeIntegrator:
                     if stepping is not levels:
                         stepping.append(level)
                     elif rest is not None and t_new >= history.rest_from and \
-                            abs(self.inlet_load(level, rest[0])) <= self.tolerance:
-                        columns, self.step_model = rest
-                        stepping = [levels[0], *(restricted(lv, columns, self.step_model) for lv in levels[-3:])]
+                            abs(self.outside_load(level, rest)) <= self.tolerance:
+                        self.step_model = rest
+                        stepping = [levels[0], *(transferred(lv, rest) for lv in levels[-3:])]
                     ceiling.accepted(t_new - t)
                     bar.update(t_new - t)
                     bar.set_postfix_str(f"dt = {t_new - t:.2g} s, steps {len(levels) - 2}")

@@ -33,10 +33,13 @@ from lubecontact.unsteady.series import (
 
 def _rest_resistance(integrator) -> float:
     """Resistance of the contact at rest: the steady dry solve (no fluid pressure), the
-    state every stop settles to."""
+    state every stop settles to, on the mesh its steps end on (the mesh at rest where there
+    is one, TimeIntegrator.rest_domain)."""
     if integrator.contact is None:
         return math.inf
-    model = Model.assemble(scene_at(integrator.scene, 0.0), integrator.steady_model.mesh, integrator.contact)
+    model = integrator.rest_domain()
+    if model is None:
+        model = Model.assemble(scene_at(integrator.scene, 0.0), integrator.steady_model.mesh, integrator.contact)
     state, _, _ = steady_solve(model)
     integrator.coupled_solves += 1
     return instant(model, state)["contact_resistance"]
