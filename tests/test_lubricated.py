@@ -179,6 +179,18 @@ def test_a_failed_force_balance_is_written_as_not_converged(monkeypatch):
     assert not np.isnan(ds["contact_resistance"].item())
 
 
+def test_a_nested_solve_that_runs_out_of_iterations_is_finished_and_its_count_said_once():
+    """A nested solve stopped by solver.max_iterations, without a failure of its own, is
+    finished by one Newton; the note gives the iteration count and the last deformation
+    change once (it read "stopped after 3 iterations (3 iteration(s) without ...)"). Three
+    iterations: the Newton's own limit is solver.max_iterations too."""
+    ds = lc.solve(scene(**{"mesh.nx": 21, "mesh.ny": 11, "solver.max_iterations": 3}))
+    notes = ds.attrs["notes"]
+    assert ds["converged"].item() == 1
+    assert "the nested solver stopped after 3 iteration(s) without its deformation change" in notes, notes
+    assert "iterations (3 iteration(s)" not in notes
+
+
 def test_rigid_model_ignores_a_deformation_warm_start():
     # a sweep under effects: auto can switch elastic_deformation off between neighbours
     elastic = scene(**{"mesh.nx": 21, "mesh.ny": 11, "effects.hydrodynamics": False})

@@ -688,9 +688,10 @@ def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
             newton_failures.append(f"one Newton {how}: {err}")
             continue
         if newton_diagnostics.converged:
+            stopped = f"after {diagnostics.iterations} iterations ({why})" if diagnostics.failure else f"after {why}"
             return finished, newton_diagnostics, (
-                f"the nested solver stopped after {diagnostics.iterations} iterations ({why}); one Newton {how} "
-                f"converged in {newton_diagnostics.iterations} (solver.method newton, docs/physics.md section 20)")
+                f"the nested solver stopped {stopped}; one Newton {how} converged in {newton_diagnostics.iterations} "
+                "(solver.method newton, docs/physics.md section 20)")
         newton_failures.append(f"one Newton {how}: {newton_diagnostics.failure}")
     return state, dataclasses.replace(diagnostics, failure="; then ".join([why, *newton_failures])), ""
 
