@@ -126,10 +126,9 @@ def test_default_grids(fresh):
     # transient: 5 stop curves + 7 viscosities x 3 forces (3 of them stop curves: Table 1,
     # mu = 1 Pa s, F = 2 N) + 6 temperatures x 2 forces (the datasheet oil) + 1 vibration +
     # 3 shocks + the accuracy ladders' meshes 31, 51, 101, 201 along x (21 along y) and
-    # tolerances 2e-3, 5e-4 (51 x 51 at 1e-3 is the stop figure's Table 1 case) and the mesh at
-    # rest 2 and 4 times finer on 31 x 21 (once is the mesh ladder's) + the oil and 3 greases at
-    # 0.5 N + 5 yield stresses x 3 forces (3 of them the grease figure's)
-    transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 6 + 2 + 4 + 15 - 3, "transient_figure": 7,
+    # tolerances 2e-3, 5e-4 (51 x 51 at 1e-3 is the stop figure's Table 1 case) + the oil and 3
+    # greases at 0.5 N + 5 yield stresses x 3 forces (3 of them the grease figure's)
+    transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 6 + 4 + 15 - 3, "transient_figure": 7,
                  "transient_accuracy": 1}
     assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
