@@ -70,11 +70,16 @@ CASES = {
                                      "motion.frequency": 100.0},
                               "converges since a step stops at a tenth of its error weight (it failed at t = 5.3e-9 s), "
                               "24-30 s (a longer alarm, LONGER_BUDGET)"),
-    # the same fretting on the default 51-node line (the issue's scene) still fails
+    # the same fretting on the default 51-node line (the issue's scene). Traced in the twentieth
+    # session: cells sealed at the percolation floor (A_ii ~ 1e-22) whose squeeze outflow swung
+    # their scaled residual by 6e9 Pa for a film step of 1e-13 m; then, with that outflow measured
+    # as a film change (integrator.Squeeze.outflow_scale_floor), line searches of 1/16 to 1/1024
+    # across the inlet's cavitation kinks, and a force balance stalled at 3e-6 of the force
     "fretting_stiff_grease_51_nodes": (True, {**GREASE, "mesh.nx": 51, "lubricant.viscosity": 100.0,
                                               "motion.amplitude": 50e-6, "motion.frequency": 100.0},
-                                       "a step fails at t = 5.3e-9 s (the Newton's line search finds no descent at a "
-                                       "scaled residual of 0.048; the nested solve does not meet its tolerances), 11 s"),
+                                       "converges since a step's sealed cells measure their outflow as a film change, "
+                                       "its line search is non-monotone and its force balance is judged by the "
+                                       "displacement that closes it (a step failed at t = 5.3e-9 s), 23 s"),
     "heavy_load_stop": (True, {**QUICK, "operating.force": 20.0, "motion.kind": "stop", "motion.speed": 1.0,
                                "motion.duration": 0.01},
                         "converges since a line contact's step is one Newton (the nested solve failed at 6.0 ms), 3.3-3.5 s"),
@@ -165,7 +170,7 @@ def outcomes():
 # contact's time step is one Newton (unsteady/integrator.step_solve)
 CONVERGED = {"soft_film_M13", "soft_film_M23", "smooth_coarse_line", "heavy_load_stop", "table1_tight_stop", "grease_1_Pa_s",
              "tight_stop_29_nodes", "tight_stop_to_reconnect", "grease_10_Pa_s", "fretting_stiff_grease",
-             "sliding_random_vibration"}
+             "fretting_stiff_grease_51_nodes", "sliding_random_vibration"}
 
 
 def failing_today(case):
@@ -183,7 +188,7 @@ def test_hard_case_converges_and_says_so(case, outcomes):
         assert ds["min_film_thickness"].item() > 1e-9
 
 
-STEP_FAILURE = re.compile(r"NOT CONVERGED: time step at t = (\S+) s \(dt = (\S+) s\) did not converge "
+STEP_FAILURE = re.compile(r"NOT CONVERGED: time step at t = (\S+) s \(dt = (\S+) s\) (?:did not converge|was not taken) "
                           r"\(\d+ attempt\(s\) in a row(?:; below motion.tolerance [^)]*)?(?:; \S+ s is the shortest step [^)]*)?\): (.+)")
 
 
@@ -243,8 +248,9 @@ def test_a_jump_over_an_impasse_is_said_and_lands_where_looser_tolerances_point(
 
 
 def test_where_no_jump_converges_the_failure_names_the_sealing_pocket(monkeypatch):
-    """Without the jump (no probe allowed) the tight stop fails at the impasse, and its failure
-    says where the pocket drains and that a looser motion.tolerance may step over it."""
+    """Without the jump (no probe allowed) the tight stop ends at the impasse, where its steps
+    creep towards the kink (integrator.CREEPING), and says so, where the pocket drains and that
+    a looser motion.tolerance may step over it."""
     monkeypatch.setattr(integrator, "IMPASSE_PROBES", 0)
     _, overrides, _ = CASES["tight_stop_to_reconnect"]
     ds = lc.transient(lc.load_scene(TABLE1, overrides), progress=False)
@@ -252,3 +258,4 @@ def test_where_no_jump_converges_the_failure_names_the_sealing_pocket(monkeypatc
     assert ds["converged"].item() == 0 and ds["impasse_jumps"].item() == 0
     assert STEP_FAILURE.search(notes), notes
     assert "a pocket of the film is sealing at x = 0 mm" in notes and "a looser motion.tolerance" in notes
+    assert "was not taken" in notes and integrator.CREEPING in notes and "since the motion last changed" in notes

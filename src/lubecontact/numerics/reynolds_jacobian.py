@@ -14,6 +14,7 @@ cell b -flux_f. The matrix J[i, j] = d w_i / d h_j has at most seven entries a r
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
@@ -101,6 +102,8 @@ class LinearOutflow:
     scale: np.ndarray
     outflow: np.ndarray
     film_slopes: Callable[[], tuple[sp.csr_matrix, sp.csr_matrix]]
+    # per unknown, 1 where the scale is A_ii and 0 where a floor replaced it (with_scale_floor)
+    scale_moves: np.ndarray | float = 1.0
 
     @cached_property
     def film_jacobians(self) -> tuple[sp.csr_matrix, sp.csr_matrix]:
@@ -114,5 +117,12 @@ class LinearOutflow:
         outflow_film, scale_film = self.film_jacobians
         flow = sp.diags(slope_flow / self.scale)
         pressure = (sp.diags(slope_pressure) + flow @ self.matrix).tocsc()
-        film = flow @ outflow_film - sp.diags(slope_flow * self.outflow / self.scale**2) @ scale_film
+        film = flow @ outflow_film - sp.diags(slope_flow * self.scale_moves * self.outflow / self.scale**2) @ scale_film
         return pressure, film.tocsr()
+
+
+def with_scale_floor(parts, floor: np.ndarray):
+    """``parts`` (LinearOutflow, or yield_stress_reynolds.YieldStressOutflow) with its scale
+    raised to ``floor`` where it is lower, the derivatives of the scale dropped there (the
+    floor is held fixed through a solve)."""
+    return dataclasses.replace(parts, scale=np.maximum(parts.scale, floor), scale_moves=(parts.scale >= floor) * 1.0)

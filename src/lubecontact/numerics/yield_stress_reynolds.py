@@ -46,6 +46,9 @@ class YieldStressOutflow:
     outflow: np.ndarray
     scale: np.ndarray
     blocks: Callable[[], tuple[sp.csc_matrix, sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]]
+    # per unknown, 1 where the scale is s_i and 0 where a floor replaced it
+    # (reynolds_jacobian.with_scale_floor)
+    scale_moves: np.ndarray | float = 1.0
 
     @cached_property
     def jacobian_blocks(self) -> tuple[sp.csc_matrix, sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
@@ -61,7 +64,7 @@ class YieldStressOutflow:
         # (w/s)/s, not w/s^2: at Newton iterates far from the answer s and w reach 1e192 and
         # 1e198 (measured on a 1 N stop with a 5 kPa Bingham grease), s^2 overflows, while
         # w/s stays a pressure (1e3-1e6 Pa)
-        level = sp.diags(slope_flow * (self.outflow / self.scale) / self.scale)
+        level = sp.diags(slope_flow * self.scale_moves * (self.outflow / self.scale) / self.scale)
         pressure = sp.diags(slope_pressure) + flow @ outflow_pressure - level @ scale_pressure
         return pressure.tocsc(), (flow @ outflow_film - level @ scale_film).tocsr()
 

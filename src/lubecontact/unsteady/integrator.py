@@ -91,6 +91,16 @@ NONLINEAR_FRACTION = 0.1
 # Table 1 line stop at motion.tolerance 1e-5 (31 to 51 nodes) and the R = 5 mm stop at
 # 51 x 51: the first to third converged (bench/EXPERIMENTS.md, seventeenth session).
 IMPASSE_PROBES = 6
+# What a step that is not tried says (TimeIntegrator.run): where a pocket seals, the one Newton
+# follows its film to the kink (its complementarity measures a sealed cell's outflow as a film
+# change, integrator.Squeeze.outflow_scale_floor), and there the film's rate has no bound
+# (docs/physics.md section 14): the error test asks for ever shorter steps, down to 1e-13 s on
+# the tight stop of tests/test_hard_cases.py, which crept so for minutes. A step shorter than
+# motion.tolerance times the longest the error test asked for since the motion last changed is
+# not needed for accuracy (as after a failed solve, MAX_FAILED_IN_A_ROW): there the run jumps
+# over the impasse, or stops and says why.
+CREEPING = ("the steps creep towards a sealing pocket's kink, where the film's rate has no bound; "
+            "no step was tried")
 
 
 @dataclass
@@ -117,6 +127,25 @@ class Squeeze:
         relative change (solver.tolerance), which a stiff step's iteration may never reach
         (the 10 and 100 Pa s oscillations of tests/test_hard_cases.py failed on it)."""
         return bool(np.all(np.abs(correction) <= NONLINEAR_FRACTION * self.error_weight(film)))
+
+    def settled_position(self, displacement: float) -> bool:
+        """Whether the cylinder's displacement that would close the force balance (m: the
+        force residual over the contact's stiffness dF/dz) is below NONLINEAR_FRACTION of the
+        smallest error weight of a film (tolerance x floor): the step's test on the force
+        balance, the same as on the film, in place of the steady solve's relative force
+        (solver.tolerance), which a stiff step's Newton may stall above (the 100 Pa s fretting
+        on the 51-node line, tests/test_hard_cases.py, stalled at 3e-6 of the force)."""
+        return abs(displacement) <= NONLINEAR_FRACTION * self.tolerance * self.floor
+
+    def outflow_scale_floor(self, cell_area: np.ndarray, pressure: float) -> np.ndarray:
+        """The smallest scale (m^3/(Pa s)) by which the one Newton divides a cell's outflow
+        in its complementarity residual (model/monolithic_newton.py): c0 dA h_s / p, the
+        outflow of squeezing the cell's film by the film scale h_s over the step, per
+        pressure ``pressure`` (Pa, the nominal contact pressure). A cell whose own
+        conductance (its Poiseuille diagonal A_ii) is below it is sealed for this step: its
+        outflow is then measured as that film change, not as the pressure that would drive it
+        through the seal (docs/physics.md section 20)."""
+        return self.coefficient * cell_area * self.film_scale / pressure
 
 
 @dataclass
@@ -527,6 +556,7 @@ class TimeIntegrator:
         breaks.append(history.end)
         dt, order, failure, failed = first, 1, "", 0
         asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
+        longest = None  # the longest step the error test asked for since the motion last changed (creeping)
         ceiling = StepCeiling(floor=shortest)
         plug = self.scene.lubricant.rheology != "newtonian"  # a yield stress: StepCeiling at rest
         rest = self.rest_domain()
@@ -545,35 +575,41 @@ class TimeIntegrator:
                     dt = min(dt, self.base.max_step(t))
                     dt = ceiling.limit(dt)
                     t_new = target if t + 1.1 * dt >= target else t + dt
-                    level, outcome = self.step(stepping, t_new, order)
+                    creeping = longest is not None and t_new - t < self.tolerance * longest \
+                        and bool(sealing_pocket(stepping))
+                    level, outcome = (None, CREEPING) if creeping else self.step(stepping, t_new, order)
                     if level is None:
                         failed, solve_failed = failed + 1, True
                         if plug and history.rest_from is not None and t >= history.rest_from:
                             ceiling.solve_failed(t_new - t, t - stepping[-2].time)
                         needless = asked is not None and t_new - t < self.tolerance * asked
                         unresolved = t_new - t <= shortest
-                        if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW or needless or unresolved:
+                        if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW or needless or unresolved or creeping:
                             short = (f"; below motion.tolerance = {self.tolerance:g} times the {asked:.3g} s the error "
                                      "test last asked for, a step is not needed for accuracy and a shorter one only "
                                      "stiffens the squeeze film" if needless else "")
                             short += (f"; {shortest:.3g} s is the shortest step whose inertial force the force balance "
                                       "resolves with motion.mass" if unresolved else "")
+                            short += (f"; below motion.tolerance = {self.tolerance:g} times the {longest:.3g} s the error "
+                                      "test asked for since the motion last changed" if creeping else "")
                             pocket = sealing_pocket(stepping)
-                            jump = self.jump_over_impasse(stepping, max(t_new - t, asked or 0.0), target, pocket)
+                            probe = max(t_new - t, asked or 0.0, self.tolerance * longest if creeping else 0.0)
+                            jump = self.jump_over_impasse(stepping, probe, target, pocket)
                             if jump is not None:  # restart at first order from it, as after a breakpoint
                                 levels.append(jump)
                                 if stepping is not levels:
                                     stepping.append(jump)
                                 bar.update(jump.time - t)
                                 failed, solve_failed, order, dt = 0, False, 1, jump.time - t
-                                asked = dt
+                                asked = longest = dt
                                 continue
                             if pocket:
                                 outcome += (f"; a pocket of the film is sealing at {pocket}: there the state must "
                                             "jump (docs/physics.md section 14, \"The impasse at a sealing pocket\"), but no "
                                             f"longer step (up to {4.0 ** IMPASSE_PROBES:g} times) converged either; a "
                                             "looser motion.tolerance may step over it")
-                            failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) did not converge "
+                            verdict = "was not taken" if creeping else "did not converge"
+                            failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) {verdict} "
                                        f"({failed} attempt(s) in a row{short}): {outcome}")
                             break
                         self.rejected += 1
@@ -605,10 +641,12 @@ class TimeIntegrator:
                         # coupled iteration resolves; the error control shortens it if needed)
                         order = 1
                         dt = t_new - t
+                        longest = None
                     else:
                         dt, order = (t_new - t) * min(GROWTH, max(SHRINK, factor)), 2
                     if not solve_failed:
                         asked = dt
+                        longest = dt if longest is None else max(longest, dt)
                     solve_failed = False
         except KeyboardInterrupt:
             failure = f"interrupted at t = {levels[-1].time:.6g} s: the series up to there"

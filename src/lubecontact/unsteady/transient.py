@@ -62,7 +62,8 @@ def impasse_jumps(levels) -> list[tuple[object, object]]:
 
 def impasse_note(jumps) -> str:
     """What a run that jumped over impasses at sealing pockets says (``impasse_jumps``)."""
-    return (f"{len(jumps)} impasse jump(s): where a pocket of the film sealed no step's solve continued the state "
+    return (f"{len(jumps)} impasse jump(s): where a pocket of the film sealed the film's rate had no bound and no "
+            "short step continued the state "
             "(docs/physics.md section 14, \"The impasse at a sealing pocket\"), so the pocket's pressure fell to its "
             "neighbours' at once, as the model says, over one first-order step accepted without the error test: "
             + "; ".join(f"t = {before.time:.6g} s over {level.time - before.time:.3g} s (error estimate "
