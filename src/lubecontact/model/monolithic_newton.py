@@ -74,8 +74,9 @@ SMALLEST_STEP = 2.0**-12
 # the 100 Pa s fretting on the 51-node line (tests/test_hard_cases.py): with the monotone
 # search, steps of 1/16 to 1/1024 stalled a step's Newton at a residual of 1e-5 (bench/
 # EXPERIMENTS.md, twentieth session). Their own memory was 10; 5 keeps the stall test
-# (STALL_ITERATIONS) meaningful. A steady solve stays monotone: non-monotone, the steady
-# starts of three Bingham stops (tests/test_grease_stop.py) stalled.
+# (STALL_ITERATIONS) meaningful. A steady solve, and a grease's step (newtonian_step), stay
+# monotone: non-monotone, the steady starts of three Bingham stops (tests/test_grease_stop.py)
+# stalled.
 NONMONOTONE_MEMORY = 5
 # With smooth surfaces a step may close the film by at most this fraction at any node
 # (fraction to the boundary, as interior-point methods keep their iterates feasible).
@@ -175,6 +176,16 @@ class Linearisation:
         return 0.5 * total
 
 
+def newtonian_step(model: Model) -> bool:
+    """Whether ``model`` is a time step of a Newtonian film, whose Newton takes a step's own
+    residual scale, line search and force test (docs/physics.md section 20, "A time step's
+    residual and tests"). A grease's steps keep the steady ones: with them the Bingham stop of
+    the figure build (2 N, 101-node line) failed at t = 1.6 s, or, with the monotone search
+    alone, ran in 200 steps against 78 and reconnected 2.7 % later (bench/EXPERIMENTS.md,
+    twentieth session): its plug leaves the pressure undetermined as the squeeze weakens."""
+    return model.squeeze is not None and yield_stress_law(model) is None
+
+
 def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisation:
     """The residual of the module docstring at ``it`` and its Jacobian blocks, the
     Fischer-Burmeister function smoothed by ``smoothing`` (Pa; complementarity.py)."""
@@ -222,7 +233,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
                                          faces, face_slopes, coefficient_slope, added_outflow_film=added)
         else:
             parts = LinearOutflow(system.matrix, system.matrix.diagonal(), system.matrix @ p - system.rhs, film_slopes)
-        if model.squeeze is not None:  # a step's sealed cells (integrator.Squeeze.outflow_scale_floor)
+        if newtonian_step(model):  # a step's sealed cells (integrator.Squeeze.outflow_scale_floor)
             nominal = force / float(np.sum(mesh.nodal_area))
             parts = with_scale_floor(parts, model.squeeze.outflow_scale_floor(mesh.nodal_area[unknown], nominal))
         w, scale = parts.outflow, parts.scale
@@ -430,7 +441,7 @@ def converged(model: Model, lin: Linearisation, tolerance: float, stiffness: flo
     Newton direction, with which a time step judges its force balance by the displacement
     that would close it (integrator.Squeeze.settled_position)."""
     force_ok = abs(lin.r_z) / lin.film_scale <= tolerance
-    if not force_ok and model.squeeze is not None and stiffness is not None:
+    if not force_ok and newtonian_step(model) and stiffness is not None:
         imbalance = lin.r_z * model.scene.operating.force / lin.film_scale  # N
         force_ok = model.squeeze.settled_position(imbalance / (stiffness - lin.load_slope))
     reynolds_ok = lin.state.reynolds is None or lin.state.reynolds.residual <= tolerance
@@ -463,7 +474,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
     forcing = 0.1
     influence = dense_influence(model)
     history = [lin.merit()]
-    memory = NONMONOTONE_MEMORY if model.squeeze is not None else 1
+    memory = NONMONOTONE_MEMORY if newtonian_step(model) else 1
     for iteration in range(1, max_iterations + 1):
         if converged(model, lin, tolerance, stiffness):
             return lin, iteration - 1, stiffness, ""
