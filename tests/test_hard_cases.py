@@ -107,6 +107,15 @@ CASES = {
                                        "motion.tolerance": 1e-5, "motion.duration": 0.02},
                                 "converges since the integrator jumps over the impasse at a sealing pocket (a step "
                                 "failed at t = 10.67 ms with dt = 4e-12 s), 10-14 s"),
+    # found in the twentieth session (issue 27): the figure build's Bingham stop. A step of a
+    # Newtonian film takes its own residual scale, a non-monotone line search and a force test by
+    # displacement (docs/physics.md section 20); with them this grease stop stalled at t = 1.6 s
+    "bingham_stop": (True, {"mesh.ny": 1, "mesh.nx": 101, "mesh.x_min": -1e-3, "mesh.x_max": 1e-3,
+                            "lubricant.rheology": "bingham", "lubricant.yield_stress": 100.0,
+                            "lubricant.creep_viscosity": 1e8, "operating.force": 2.0,
+                            "operating.speed": 1.0, "motion.kind": "stop", "motion.duration": 30.0},
+                     "converges since a grease's steps keep the steady Newton's choices (it stalled at t = 1.6 s "
+                     "with a Newtonian step's), 5 s"),
     # found this session (issue 28): a sliding contact on its spring under random base vibration.
     # Sliding at 0.1 m/s, or at 5 N, or under a 100 Hz sine, it runs; at rest it runs (12 events)
     "sliding_random_vibration": (True, {**QUICK, "operating.speed": 1.0, "operating.force": 0.5, "motion.kind": "steady",
@@ -170,7 +179,7 @@ def outcomes():
 # contact's time step is one Newton (unsteady/integrator.step_solve)
 CONVERGED = {"soft_film_M13", "soft_film_M23", "smooth_coarse_line", "heavy_load_stop", "table1_tight_stop", "grease_1_Pa_s",
              "tight_stop_29_nodes", "tight_stop_to_reconnect", "grease_10_Pa_s", "fretting_stiff_grease",
-             "fretting_stiff_grease_51_nodes", "sliding_random_vibration"}
+             "fretting_stiff_grease_51_nodes", "sliding_random_vibration", "bingham_stop"}
 
 
 def failing_today(case):
