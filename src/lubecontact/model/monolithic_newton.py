@@ -75,9 +75,9 @@ SMALLEST_STEP = 2.0**-12
 # search, steps of 1/16 to 1/1024 stalled a step's Newton at a residual of 1e-5 (bench/
 # EXPERIMENTS.md, twentieth session). Their own memory was 10; 5 keeps the stall test
 # (STALL_ITERATIONS) meaningful. Fragile, and said so: with 2, 3 or 10 that fretting fails
-# again, and with 2 the 10 Pa s oscillation on the 51-node line (a strict xfail) runs. A steady solve, and a grease's step (newtonian_step), stay
-# monotone: non-monotone, the steady starts of three Bingham stops (tests/test_grease_stop.py)
-# stalled.
+# again, and with 2 the 10 Pa s oscillation on the 51-node line (a strict xfail) runs. A steady
+# solve, and a grease's step (newtonian_step), stay monotone: non-monotone, the steady starts
+# of three Bingham stops (tests/test_grease_stop.py) stalled.
 NONMONOTONE_MEMORY = 5
 # With smooth surfaces a step may close the film by at most this fraction at any node
 # (fraction to the boundary, as interior-point methods keep their iterates feasible).
@@ -195,6 +195,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
     film = model.undeformed_gap + it.z + it.delta
     if model.contact is None and model.hydrodynamic and not np.all(film[interior_nodes(mesh.shape, mesh.line)] > 0.0):
         raise ValueError("smooth surfaces need a positive film at every node")
+    nominal = force / float(np.sum(mesh.nodal_area))  # Pa, the load over the mesh's area
     contact_pressure = np.zeros(mesh.shape)
     contact_slope = np.zeros(mesh.shape)
     if model.contact is not None:
@@ -235,7 +236,6 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         else:
             parts = LinearOutflow(system.matrix, system.matrix.diagonal(), system.matrix @ p - system.rhs, film_slopes)
         if newtonian_step(model):  # a step's sealed cells (integrator.Squeeze.outflow_scale_floor)
-            nominal = force / float(np.sum(mesh.nodal_area))
             parts = with_scale_floor(parts, model.squeeze.outflow_scale_floor(mesh.nodal_area[unknown], nominal))
         w, scale = parts.outflow, parts.scale
         if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
@@ -261,7 +261,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
     )
     scale_h = film_scale(model)
     r_delta = None if model.deformation is None else it.delta - model.deformation(total)
-    pressure_scale = max(float(np.max(total)), force / float(np.sum(area)))
+    pressure_scale = max(float(np.max(total)), nominal)
     if reynolds is not None:
         reynolds.residual = float(np.max(np.abs(exact), initial=0.0)) / pressure_scale
     target, load_slope = (force, 0.0) if model.load is None else model.load.force(it.z)
@@ -513,10 +513,11 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
 
 
 def line_search(model: Model, it: Iterate, lin: Linearisation, direction, reference: float):
-    """Armijo backtracking along ``direction`` (newton_direction), non-monotone: a step is
-    taken when its merit is enough below ``reference``, the largest merit of the last
-    NONMONOTONE_MEMORY iterates. ((iterate, its linearisation) of the first step taken, or
-    None; the linearisation at the longest step tried, or None where it left the model)."""
+    """Armijo backtracking along ``direction`` (newton_direction): a step is taken when its
+    merit is enough below ``reference`` (newton passes the largest merit of its last
+    NONMONOTONE_MEMORY iterates in a Newtonian film's time step, else the current one's).
+    ((iterate, its linearisation) of the first step taken, or None; the linearisation at the
+    longest step tried, or None where it left the model)."""
     d_p, d_delta, dz, _ = direction
     step = longest_film_step(model, lin, d_delta, dz)
     merit = reference

@@ -575,8 +575,10 @@ class TimeIntegrator:
                     dt = min(dt, self.base.max_step(t))
                     dt = ceiling.limit(dt)
                     t_new = target if t + 1.1 * dt >= target else t + dt
-                    creeping = longest is not None and t_new - t < self.tolerance * longest \
-                        and bool(sealing_pocket(stepping))
+                    # a sealing pocket where the steps crept below what accuracy asks (CREEPING)
+                    pocket = sealing_pocket(stepping) if longest is not None and t_new - t < self.tolerance * longest \
+                        else ""
+                    creeping = bool(pocket)
                     level, outcome = (None, CREEPING) if creeping else self.step(stepping, t_new, order)
                     if level is None:
                         failed, solve_failed = failed + 1, True
@@ -592,7 +594,8 @@ class TimeIntegrator:
                                       "resolves with motion.mass" if unresolved else "")
                             short += (f"; below motion.tolerance = {self.tolerance:g} times the {longest:.3g} s the error "
                                       "test asked for since the motion last changed" if creeping else "")
-                            pocket = sealing_pocket(stepping)
+                            if not creeping:
+                                pocket = sealing_pocket(stepping)
                             probe = max(t_new - t, asked or 0.0, self.tolerance * longest if creeping else 0.0)
                             jump = self.jump_over_impasse(stepping, probe, target, pocket)
                             if jump is not None:  # restart at first order from it, as after a breakpoint
