@@ -336,11 +336,11 @@ def test_a_singular_factor_in_a_step_is_a_failed_solve_not_a_crash(monkeypatch):
     real_solve = integrator.coupled_solve
     raised = []
 
-    def singular_once(model, initial):
+    def singular_once(model, initial, **limits):
         if model.squeeze is not None and not raised:
             raised.append(True)
             raise RuntimeError("Factor is exactly singular")
-        return real_solve(model, initial)
+        return real_solve(model, initial, **limits)
 
     monkeypatch.setattr(integrator, "coupled_solve", singular_once)
     scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.02})
@@ -508,8 +508,8 @@ def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch
     monkeypatch.setattr(integrator, "NONLINEAR_FRACTION", 1e-7)
     nested_failures = []
 
-    def recorded(model, initial):
-        state, diag = coupling.coupled_solve(model, initial)
+    def recorded(model, initial, **limits):
+        state, diag = coupling.coupled_solve(model, initial, **limits)
         nested_failures.append(diag.failure)
         return state, diag
 

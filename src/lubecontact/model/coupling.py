@@ -215,12 +215,12 @@ def nested_start(model: Model, tolerance: float, initial: WarmStart | None = Non
     return start
 
 
-def coupled_solve(model: Model, initial: WarmStart | None = None,
-                  tolerance: float | None = None) -> tuple[State, Diagnostics]:
+def coupled_solve(model: Model, initial: WarmStart | None = None, tolerance: float | None = None,
+                  max_iterations: int | None = None) -> tuple[State, Diagnostics]:
     """Iterate force balance and deformation to convergence; returns the state and diagnostics.
 
     ``initial``: the WarmStart to start from (None: cold); either way the fine mesh starts from the nested (coarse-mesh) solution
-    where there is one (nested_start). ``tolerance`` overrides the scene's.
+    where there is one (nested_start). ``tolerance`` and ``max_iterations`` override the scene's.
     """
     scene = model.scene
     if scene.lubricant.rheology != "newtonian":
@@ -229,7 +229,7 @@ def coupled_solve(model: Model, initial: WarmStart | None = None,
                          "(model/monolithic_newton.py, docs/physics.md section 21)")
     tol = scene.solver.tolerance if tolerance is None else tolerance
     force = scene.operating.force
-    max_iterations = scene.solver.max_iterations
+    max_iterations = scene.solver.max_iterations if max_iterations is None else max_iterations
     initial = nested_start(model, tol, initial)
     delta = np.zeros(model.mesh.shape)
     z = stiffness = cavitated = reynolds = pressure_guess = None

@@ -255,13 +255,24 @@ class NewtonFallback:
         self.failures_in_a_row = 0 if converged else self.failures_in_a_row + 1
 
 
+# The nested coupled solve that polishes a line contact's converged Newton (step_solve) gets
+# at most this many iterations. Measured without a limit on the 51-node line (the 10 Pa s
+# oscillation and the 100 Pa s fretting of tests/test_hard_cases.py, the 1 Pa s oscillation,
+# the Table 1 stop): the nested solves that converged took 1 iteration (median), at most 3 in
+# 90 % and at most 10 in 99 % (the longest 14 and 44); most of those that did not ran to the
+# iteration limit, 8.3 s of the 10 Pa s oscillation's 14.6 s and 10.9 s of the fretting's 15.1 s. Where the
+# polish stops, the Newton's answer, which met its own tests, is the step's
+# (bench/EXPERIMENTS.md, twenty-first session).
+POLISH_ITERATIONS = 10
+
+
 def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
     """(state, diagnostics) of one time step from the predictor ``initial``. On a line
     contact (monolithic_newton.dense_step_serves) one Newton (docs/physics.md section 20),
     then the nested coupled solve (model/coupling.py) from the Newton's answer where it
-    converged (a few cheap iterations: its Reynolds solves are exact, so each cell's volume
-    balance closes to round-off, series.volume_balance, where the Newton's met its
-    tolerance), else from the same predictor: the nested answer where it converges, else
+    converged (at most POLISH_ITERATIONS cheap iterations: its Reynolds solves are exact, so
+    each cell's volume balance closes to round-off, series.volume_balance, where the
+    Newton's met its tolerance), else from the same predictor: the nested answer where it converges, else
     the Newton's, else both failures named. Measured on Table 1 stops: the Newton alone
     fails on the 201-node line where the nested solve converges, and the nested alone on
     the 20 N stop and at motion.tolerance 1e-5 (tests/test_hard_cases.py). A contact with
@@ -277,11 +288,12 @@ def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
     if not dense_step_serves(model):
         return nested_then_newton(model, initial, fallback)
     state, diag = monolithic_solve(model, initial, continuation=False)
-    start = initial
+    start, limit = initial, None
     if diag.converged:
         start = WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure, cavitated=state.reynolds.cavitated
                           if state.reynolds is not None else None)
-    nested_state, nested, why = nested_step(model, start)
+        limit = POLISH_ITERATIONS
+    nested_state, nested, why = nested_step(model, start, limit)
     if nested is not None and nested.converged:
         return nested_state, nested
     if diag.converged:
@@ -289,15 +301,16 @@ def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
     return state, dataclasses.replace(diag, failure=f"one Newton: {diag.failure}; then the nested coupled solve: {why}")
 
 
-def nested_step(model: Model, initial: WarmStart):
-    """(state, diagnostics, failure message) of the nested coupled solve of a step; state
+def nested_step(model: Model, initial: WarmStart, max_iterations: int | None = None):
+    """(state, diagnostics, failure message) of the nested coupled solve of a step (at most
+    ``max_iterations``, None: solver.max_iterations); state
     and diagnostics None where it raised: a SolveError, or SuperLU's RuntimeError on a
     singular factor (seen in an experiment on a step of 16 times the one the error test
     asked for, where a pocket seals on the Table 1 51-node line stop at 1e-5), which the
     step's retry then answers as any failed solve, as the Newton's (monolithic_newton.newton)
     does."""
     try:
-        state, diag = coupled_solve(model, initial)
+        state, diag = coupled_solve(model, initial, max_iterations=max_iterations)
     except RuntimeError as err:  # SolveError is one
         return None, None, str(err)
     return state, diag, diag.failure or "it did not meet its tolerances"
