@@ -485,12 +485,14 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
     influence = dense_influence(model)
     history = [lin.merit()]
     memory = NONMONOTONE_MEMORY if newtonian_step(model) else 1
+    best = (lin, None)  # the iterate of least merit, and dF/dz of its Newton direction
     for iteration in range(1, max_iterations + 1):
         if converged(model, lin, tolerance, stiffness):
             return lin, iteration - 1, stiffness, ""
         if len(history) > STALL_ITERATIONS and history[-1] > STALL_FACTOR * history[-1 - STALL_ITERATIONS]:
-            if converged(model, lin, tolerance, stiffness, stalled=True):
-                return lin, iteration - 1, stiffness, ""
+            best_lin, best_stiffness = best[0], stiffness if best[1] is None else best[1]
+            if converged(model, best_lin, tolerance, best_stiffness, stalled=True):
+                return best_lin, iteration - 1, best_stiffness, ""
             return lin, iteration, stiffness, (
                 f"Newton stalled: the scaled residual norm fell from {np.sqrt(2 * history[-1 - STALL_ITERATIONS]):.3g} "
                 f"only to {np.sqrt(2 * history[-1]):.3g} in {STALL_ITERATIONS} iterations")
@@ -498,6 +500,8 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
         try:
             direction = newton_direction(model, lin, forcing, influence)
             stiffness = direction[3]
+            if lin is best[0]:
+                best = (lin, stiffness)
             accepted, full = line_search(model, it, lin, direction, max(history[-memory:]))
             if accepted is None and full is not None and lin.slopes is not None \
                     and full.slopes is not None and full.slopes[0].size == lin.slopes[0].size:
@@ -518,6 +522,8 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
             lin = linearise(model, it, smoothing_for(candidate))
         forcing = min(0.1, GMRES_FORCING + np.sqrt(lin.merit() / max(merit, 1e-300)))
         history.append(lin.merit())
+        if lin.merit() < best[0].merit():
+            best = (lin, None)
     if converged(model, lin, tolerance, stiffness):
         return lin, max_iterations, stiffness, ""
     return lin, max_iterations, stiffness, f"{max_iterations} Newton iterations without meeting the tolerances"
