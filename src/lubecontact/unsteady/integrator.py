@@ -627,7 +627,10 @@ class TimeIntegrator:
                                     stepping.append(jump)
                                 bar.update(jump.time - t)
                                 failed, solve_failed, order, dt = 0, False, 1, jump.time - t
-                                asked = longest = dt
+                                # the motion has not changed: the creep test keeps its reference
+                                # (a jump is at least 4 times motion.tolerance times it, so the
+                                # next jump needs the error test to shorten the steps again)
+                                asked, longest = dt, dt if longest is None else max(longest, dt)
                                 continue
                             if pocket:
                                 outcome += (f"; a pocket of the film is sealing at {pocket}: there the state must "
