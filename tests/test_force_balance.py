@@ -9,7 +9,8 @@ import pytest
 
 import lubecontact as lc
 import lubecontact.model.force_balance as force_balance
-from lubecontact.model.model import Model
+from lubecontact.model.model import Model, SolveError
+from lubecontact.model.monolithic_newton import Iterate, linearise
 
 TABLE1 = "config/scenes/table1.yaml"
 
@@ -82,3 +83,21 @@ def test_wet_balance_across_the_asperity_knee(monkeypatch, offset, most):
     assert abs(state.total_force - 5.0) <= 1e-6 * 5.0
     assert state.z == pytest.approx(truth.z, abs=1e-3 * sigma)
     assert counted.calls <= most, counted.calls
+
+
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_a_position_as_far_as_the_cylinders_radius_is_refused_by_both_solvers(side):
+    """A film (or an interference) as large as the cylinder's radius leaves the lubrication
+    approximation and Eq. (4)'s parabola (evaluation.beyond_the_radius): the force balance
+    started there stops with that reason, and the one Newton's residual there is outside the
+    model, where both once ran away (bench/EXPERIMENTS.md, twenty-first session)."""
+    model = line_model(**{"operating.speed": 0.1})
+    radius = model.scene.geometry.radius
+    delta = np.zeros(model.mesh.shape)
+    with pytest.raises(SolveError, match="cylinder's radius"):
+        force_balance.balance_force(model, delta, side * 2.0 * radius, 1e-6)
+    with pytest.raises(ValueError, match="cylinder's radius"):
+        linearise(model, Iterate(np.zeros(model.mesh.shape), delta, side * 2.0 * radius))
+    # a position well inside the model is evaluated as before
+    state, _ = force_balance.balance_force(model, delta, None, 1e-6)
+    assert abs(state.total_force - model.scene.operating.force) <= 1e-6 * model.scene.operating.force

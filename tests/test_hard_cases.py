@@ -27,7 +27,8 @@ BUDGET = 30  # s of wall clock per case; each measured at 0.5-17 s on the shared
 # except cases that now converge and take longer: the 100 Pa s fretting runs to the end in
 # 24-30 s (149 Newton steps with long line searches), and on the default 51-node line in 11 s
 # of CPU alone (105 steps and a jump; 22 s with a monotone line search); the 1 Pa s fretting
-# under 20 N in 25 s (239 steps, 9 jumps over impasses); their alarm still stops a run that hangs
+# under 20 N fails in 25 s (190 steps, 10 jumps over impasses); their alarm still stops a run
+# that hangs
 LONGER_BUDGET = {"fretting_stiff_grease": 60, "fretting_stiff_grease_51_nodes": 60, "fretting_1_Pa_s_20_N_51_nodes": 60}
 QUICK = {"mesh.ny": 1, "solver.max_iterations": 20}
 # a smooth elastic line contact on a fixed domain (tests/test_lubricated.py), at Moes' M = 13 and 23
@@ -105,12 +106,17 @@ CASES = {
                                  "t = 6.0e-5 s), 4 s"),
     # and under 20 N: the steps crept for minutes (killed at 400 s, t = 15.455 ms) between jumps
     # over impasses at sealing pockets, each jump having reset the creep test's reference to its
-    # own length (250 times shorter each time); it keeps the reference since
+    # own length (250 times shorter each time); it keeps the reference since. Then a jump's long
+    # step sent both solvers' cylinder away (z = 254 m, 1.6e9 m, ... until numpy overflowed);
+    # they refuse a film as large as the cylinder's radius since (evaluation.beyond_the_radius).
+    # What is left: at rest, a 40 MPa pocket trapped in the contact beside cells whose pressure
+    # the Newton leaves at -0.8 MPa, its complementarity unresolved (a scaled residual of 0.03)
     "fretting_1_Pa_s_20_N_51_nodes": (True, {**GREASE, "mesh.nx": 51, "lubricant.viscosity": 1.0,
                                              "operating.force": 20.0, "motion.amplitude": 50e-6,
                                              "motion.frequency": 100.0},
-                                      "converges since a jump keeps the creep test's reference (the steps crept for "
-                                      "minutes), 25 s with 9 jumps (a longer alarm, LONGER_BUDGET)"),
+                                      "a step fails at t = 54.5 ms after 10 jumps over impasses, 25 s (it crept for "
+                                      "minutes before a jump kept the creep test's reference; a longer alarm, "
+                                      "LONGER_BUDGET)"),
     "heavy_load_stop": (True, {**QUICK, "operating.force": 20.0, "motion.kind": "stop", "motion.speed": 1.0,
                                "motion.duration": 0.01},
                         "converges since a line contact's step is one Newton (the nested solve failed at 6.0 ms), 3.3-3.5 s"),
@@ -210,8 +216,7 @@ def outcomes():
 # contact's time step is one Newton (unsteady/integrator.step_solve)
 CONVERGED = {"soft_film_M13", "soft_film_M23", "smooth_coarse_line", "heavy_load_stop", "table1_tight_stop", "grease_1_Pa_s",
              "tight_stop_29_nodes", "tight_stop_to_reconnect", "grease_10_Pa_s", "grease_10_Pa_s_51_nodes", "fretting_stiff_grease",
-             "fretting_stiff_grease_51_nodes", "fretting_1_Pa_s_51_nodes", "fretting_1_Pa_s_20_N_51_nodes",
-             "sliding_random_vibration", "bingham_stop"}
+             "fretting_stiff_grease_51_nodes", "fretting_1_Pa_s_51_nodes", "sliding_random_vibration", "bingham_stop"}
 
 
 def failing_today(case):

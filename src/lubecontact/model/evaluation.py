@@ -64,6 +64,21 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
     )
 
 
+def beyond_the_radius(model: Model, film: np.ndarray) -> str:
+    """Why ``film`` (m) is outside the model where its size (a gap, or an interference where
+    negative) reaches the cylinder's radius, else "": the lubrication approximation, the
+    parabolic gap of Eq. (4) and the contact laws need |h| << R. Only an iteration that ran
+    away gets there (long steps over an impasse, integrator.jump_over_impasse: the cylinder's
+    position grew without bound, 254 m, 1.6e9 m, ...), and the solvers refuse such a position
+    instead of evaluating it."""
+    radius = model.scene.geometry.radius
+    size = np.abs(film)
+    if np.all(size < radius):
+        return ""
+    return (f"a film of {film.ravel()[np.argmax(size)]:.3g} m is not smaller than the cylinder's radius ({radius:g} m): "
+            "the lubrication approximation, the parabolic gap (Eq. 4) and the contact laws need |h| << R")
+
+
 def film_scale(model: Model) -> float:
     """A length on which the force changes appreciably: sigma, or a rigid Martin film."""
     if model.contact is not None:

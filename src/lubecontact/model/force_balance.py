@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lubecontact.model.evaluation import evaluate, film_scale, force_gradient
+from lubecontact.model.evaluation import beyond_the_radius, evaluate, film_scale, force_gradient
 from lubecontact.model.model import Model, SolveError, State
 
 
@@ -40,7 +40,11 @@ def balance_force(model: Model, delta: np.ndarray, z_guess: float | None, tolera
     below = above = None  # z known to carry too much (root above it) / too little load
     step = None
     previous_error = np.inf
+    state = None
     for _ in range(400):
+        outside = beyond_the_radius(model, model.undeformed_gap + z + delta)
+        if outside:  # the last state evaluated is kept
+            raise SolveError(f"force balance left the model at z = {z:.6g} m: {outside}", state)
         state = evaluate(model, z, delta, cavitated, previous, pressure_guess)
         pressure_guess = None
         if state.reynolds is not None:

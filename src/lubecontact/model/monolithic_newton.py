@@ -53,7 +53,7 @@ from scipy.sparse.linalg import LinearOperator, gmres, splu
 
 from lubecontact.model.auto_effects import decreasing_root, operating_point
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
-from lubecontact.model.evaluation import film_scale
+from lubecontact.model.evaluation import beyond_the_radius, film_scale
 from lubecontact.model.fluid_film import fluid_faces, fluid_film, squeeze_content, yield_stress_law
 from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.complementarity import fischer_burmeister
@@ -198,6 +198,9 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
     film = model.undeformed_gap + it.z + it.delta
     if model.contact is None and model.hydrodynamic and not np.all(film[interior_nodes(mesh.shape, mesh.line)] > 0.0):
         raise ValueError("smooth surfaces need a positive film at every node")
+    outside = beyond_the_radius(model, film)
+    if outside:
+        raise ValueError(outside)
     nominal = force / float(np.sum(mesh.nodal_area))  # Pa, the load over the mesh's area
     contact_pressure = np.zeros(mesh.shape)
     contact_slope = np.zeros(mesh.shape)
