@@ -270,8 +270,8 @@ class NewtonFallback:
 # oscillation and the 100 Pa s fretting of tests/test_hard_cases.py, the 1 Pa s oscillation,
 # the Table 1 stop): the nested solves that converged took 1 iteration (median), at most 3 in
 # 90 % and at most 10 in 99 % (the longest 14 and 44); most of those that did not ran to the
-# iteration limit, 8.3 s of the 10 Pa s oscillation's 14.6 s and 10.9 s of the fretting's 15.1 s. Where the
-# polish stops, the Newton's answer, which met its own tests, is the step's
+# iteration limit, 8.3 s of the 10 Pa s oscillation's 14.6 s and 10.9 s of the fretting's
+# 15.1 s. Where the polish stops, the Newton's answer, which met its own tests, is the step's
 # (bench/EXPERIMENTS.md, twenty-first session).
 POLISH_ITERATIONS = 10
 
@@ -282,8 +282,8 @@ def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
     then the nested coupled solve (model/coupling.py) from the Newton's answer where it
     converged (at most POLISH_ITERATIONS cheap iterations: its Reynolds solves are exact, so
     each cell's volume balance closes to round-off, series.volume_balance, where the
-    Newton's met its tolerance), else from the same predictor: the nested answer where it converges, else
-    the Newton's, else both failures named. Measured on Table 1 stops: the Newton alone
+    Newton's met its tolerance), else from the same predictor: the nested answer where it
+    converges, else the Newton's, else both failures named. Measured on Table 1 stops: the Newton alone
     fails on the 201-node line where the nested solve converges, and the nested alone on
     the 20 N stop and at motion.tolerance 1e-5 (tests/test_hard_cases.py). A contact with
     mass and spring (Model.load), a grease and solver.method newton have the Newton only.
