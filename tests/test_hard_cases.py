@@ -27,7 +27,7 @@ BUDGET = 30  # s of wall clock per case; each measured at 0.5-17 s on the shared
 # except cases that now converge and take longer: the 100 Pa s fretting runs to the end in
 # 24-30 s (149 Newton steps with long line searches), and on the default 51-node line in 11 s
 # of CPU alone (105 steps and a jump; 22 s with a monotone line search); the 1 Pa s fretting
-# under 20 N fails in 25 s (190 steps, 10 jumps over impasses); their alarm still stops a run
+# under 20 N runs in 15 s (191 steps, 5 jumps over impasses); their alarm still stops a run
 # that hangs
 LONGER_BUDGET = {"fretting_stiff_grease": 60, "fretting_stiff_grease_51_nodes": 60, "fretting_1_Pa_s_20_N_51_nodes": 60}
 QUICK = {"mesh.ny": 1, "solver.max_iterations": 20}
@@ -109,14 +109,16 @@ CASES = {
     # own length (250 times shorter each time); it keeps the reference since. Then a jump's long
     # step sent both solvers' cylinder away (z = 254 m, 1.6e9 m, ... until numpy overflowed);
     # they refuse a film as large as the cylinder's radius since (evaluation.beyond_the_radius).
-    # What is left: at rest, a 40 MPa pocket trapped in the contact beside cells whose pressure
-    # the Newton leaves at -0.8 MPa, its complementarity unresolved (a scaled residual of 0.03)
+    # Then it failed at t = 54.5 ms after 10 jumps, in 25 s: at rest, a 40 MPa pocket trapped
+    # beside cells whose pressure the Newton left at -0.8 MPa. Since a rejected step's next
+    # attempt follows the error's observed order (integrator.rejection_factor) and a jump starts
+    # from the last level, not from the extrapolated one, it runs to the end (twenty-second session)
     "fretting_1_Pa_s_20_N_51_nodes": (True, {**GREASE, "mesh.nx": 51, "lubricant.viscosity": 1.0,
                                              "operating.force": 20.0, "motion.amplitude": 50e-6,
                                              "motion.frequency": 100.0},
-                                      "a step fails at t = 54.5 ms after 10 jumps over impasses, 25 s (it crept for "
-                                      "minutes before a jump kept the creep test's reference; a longer alarm, "
-                                      "LONGER_BUDGET)"),
+                                      "converges since a rejected step follows the error's observed order and a jump "
+                                      "starts from the last level (it failed at t = 54.5 ms after 10 jumps), 5 jumps, "
+                                      "15 s (a longer alarm, LONGER_BUDGET)"),
     "heavy_load_stop": (True, {**QUICK, "operating.force": 20.0, "motion.kind": "stop", "motion.speed": 1.0,
                                "motion.duration": 0.01},
                         "converges since a line contact's step is one Newton (the nested solve failed at 6.0 ms), 3.3-3.5 s"),
@@ -216,7 +218,8 @@ def outcomes():
 # contact's time step is one Newton (unsteady/integrator.step_solve)
 CONVERGED = {"soft_film_M13", "soft_film_M23", "smooth_coarse_line", "heavy_load_stop", "table1_tight_stop", "grease_1_Pa_s",
              "tight_stop_29_nodes", "tight_stop_to_reconnect", "grease_10_Pa_s", "grease_10_Pa_s_51_nodes", "fretting_stiff_grease",
-             "fretting_stiff_grease_51_nodes", "fretting_1_Pa_s_51_nodes", "sliding_random_vibration", "bingham_stop"}
+             "fretting_stiff_grease_51_nodes", "fretting_1_Pa_s_51_nodes", "fretting_1_Pa_s_20_N_51_nodes",
+             "sliding_random_vibration", "bingham_stop"}
 
 
 def failing_today(case):
@@ -271,25 +274,32 @@ def test_hard_case_fails_cheaply_saying_where_and_why(case, outcomes):
 
 
 def test_a_jump_over_an_impasse_is_said_and_lands_where_looser_tolerances_point(outcomes):
-    """The tight stop meets the impasse of a sealing pocket at 10.68 ms (docs/physics.md section
-    14) and jumps over it once, saying where and over how long a step. Independent truth: the
-    same stop at 1e-3 and 2e-4, whose longer steps meet no impasse, extrapolated in the
-    tolerance (BDF2's global error goes as tol^(2/3), unsteady/transient.ERROR_ORDER_IN_TOLERANCE),
-    put the reconnect time at 1e-5 within 1 % of where the jumping run lands (measured: 13.647
-    against 13.644 ms)."""
+    """The tight stop meets the impasse of a sealing pocket at 10.6 ms (docs/physics.md section
+    14) and jumps over it, saying where, how often and over how long a step. Independent truth:
+    the same stop at 1e-3 and 2e-4, extrapolated in the tolerance (BDF2's global error goes as
+    tol^(2/3), unsteady/transient.ERROR_ORDER_IN_TOLERANCE), puts the reconnect time at 1e-5
+    within 1 % of where the jumping run lands (measured: 13.655 against 13.641 ms). The looser
+    runs' steps may meet an impasse too (2e-4 jumps once, over 21 us, since a rejected step
+    follows the error's observed order): a time within a jump is uncertain by its length, which
+    the extrapolation carries into the prediction ((1 + k) times the 2e-4 run's, k times the
+    1e-3 run's, k = 0.45 its factor); that must stay below a quarter of the 1 % compared
+    (measured: 0.22 %), or the comparison would test the jumps, not the time integration."""
     ds = outcomes("tight_stop_to_reconnect").result
     notes = ds.attrs["notes"]
-    assert ds["impasse_jumps"].item() == 1 and "1 impasse jump(s)" in notes and ds["impasse_jump"].sum() == 1
+    jumps = ds["impasse_jumps"].item()
+    assert jumps >= 1 and f"{jumps} impasse jump(s)" in notes and ds["impasse_jump"].sum() == jumps
     assert "a pocket sealing at x = 0 mm" in notes and "accepted without the error test" in notes
     assert 0.0 < ds["longest_impasse_jump"].item() < 1e-3 * ds["reconnect_time"].item()
     _, overrides, _ = CASES["tight_stop_to_reconnect"]
-    looser = {}
+    looser, jump = {}, {}
     for tolerance in (1e-3, 2e-4):
         run = lc.transient(lc.load_scene(TABLE1, {**overrides, "motion.tolerance": tolerance}), progress=False)
-        assert run["converged"].item() == 1 and run["impasse_jumps"].item() == 0
-        looser[tolerance] = run["reconnect_time"].item()
+        assert run["converged"].item() == 1
+        looser[tolerance], jump[tolerance] = run["reconnect_time"].item(), run["longest_impasse_jump"].item()
     weight = {tolerance: tolerance ** (2.0 / 3.0) for tolerance in (1e-3, 2e-4, 1e-5)}
-    predicted = looser[2e-4] + (looser[2e-4] - looser[1e-3]) * (weight[2e-4] - weight[1e-5]) / (weight[1e-3] - weight[2e-4])
+    k = (weight[2e-4] - weight[1e-5]) / (weight[1e-3] - weight[2e-4])
+    predicted = looser[2e-4] + (looser[2e-4] - looser[1e-3]) * k
+    assert (1.0 + k) * jump[2e-4] + k * jump[1e-3] < 0.25 * 0.01 * predicted
     assert ds["reconnect_time"].item() == pytest.approx(predicted, rel=0.01)
 
 

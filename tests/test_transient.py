@@ -13,7 +13,7 @@ import lubecontact as lc
 from lubecontact.model import coupling
 from lubecontact.unsteady import integrator
 from lubecontact.unsteady.events import dense_resistance
-from lubecontact.unsteady.integrator import bdf_coefficients, error_fraction
+from lubecontact.unsteady.integrator import SAFETY, SHRINK, bdf_coefficients, error_fraction, rejection_factor
 from lubecontact.unsteady.motion import SpeedHistory
 from lubecontact.unsteady.series import cycle_peaks, reconnect_time
 
@@ -82,6 +82,26 @@ def test_bdf2_coefficients_and_error_constants_at_constant_step():
     assert bdf_coefficients([0.1, 0.1]) == pytest.approx([15.0, -20.0, 5.0])
     assert error_fraction([0.1, 0.1, 0.1]) == pytest.approx(2 / 11)
     assert error_fraction([0.1, 0.1]) == pytest.approx(1 / 3)
+
+
+@pytest.mark.parametrize("power", [1.0, 2.0, 3.0])
+def test_a_rejected_step_follows_the_error_it_observed(power):
+    # an error estimate E = C dt^power: a smooth film's BDF2 gives power 3, a kink within the
+    # step (a pocket sealing) power 1. The first rejection assumes 3; the second reads the power
+    # off the two attempts and lands where E = SAFETY^power, as the first does on a smooth film
+    def error(dt):
+        return 5.0 * (dt / 1e-3) ** power
+
+    first = 1e-3 * rejection_factor(1e-3, error(1e-3), 2, None)
+    assert first == pytest.approx(1e-3 * SAFETY * 5.0 ** (-1 / 3))
+    if error(first) <= 1.0:  # power 3: the first cut already passes
+        assert power == 3.0 and error(first) == pytest.approx(SAFETY ** 3)
+        return
+    second = first * rejection_factor(first, error(first), 2, (1e-3, error(1e-3)))
+    assert error(second) == pytest.approx(SAFETY ** power)
+    # no faster than the BDF's own order, and a cut by SHRINK where the error did not fall
+    assert rejection_factor(first, 2.0, 2, (1e-3, 1.5)) == SHRINK
+    assert rejection_factor(5e-4, 1.01, 2, (1e-3, 100.0)) == pytest.approx(SAFETY * 1.01 ** (-1 / 3))
 
 
 def test_rigid_smooth_cylinder_follows_the_analytic_squeeze_law():

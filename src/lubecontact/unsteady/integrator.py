@@ -207,6 +207,28 @@ def error_fraction(steps: list[float]) -> float:
     return abs(corrector / (corrector - predictor))
 
 
+def rejection_factor(dt: float, error: float, order: int, earlier: tuple[float, float] | None) -> float:
+    """The factor on a step of length ``dt`` whose error test failed (``error``, the
+    estimate over the tolerance, > 1), for the next attempt from the same level.
+
+    The controller's usual scaling SAFETY E^{-1/q} assumes the estimate falls as dt^q with
+    q = order + 1, the BDF's local error on a smooth film. Where a node's film has a kink
+    within the step (a pocket sealing at rest, its pressure released or trapped), the
+    estimate falls as dt only: the Table 1 stop at 51 x 21 rejected each such step four to
+    six times, a fifth of a step shorter each time (bench/EXPERIMENTS.md, twenty-second
+    session). So after a second rejection from one level (``earlier``: the previous attempt's
+    dt and error) q is the order the two attempts show, ln(E_0/E)/ln(dt_0/dt), at most
+    order + 1; where the estimate did not fall, the step is cut by SHRINK, the most a
+    rejection cuts. Bounded by [SHRINK, 1]."""
+    q = float(order + 1)
+    if earlier is not None:
+        dt_0, error_0 = earlier
+        if dt >= dt_0 or error >= error_0:
+            return SHRINK
+        q = min(q, math.log(error_0 / error) / math.log(dt_0 / dt))
+    return max(SHRINK, min(SAFETY * error ** (-1.0 / q), 1.0))
+
+
 def lagrange(times: list[float], values: list, t: float):
     """Lagrange polynomial through (times, values) evaluated at t (values: numbers or arrays).
     Beyond the last time it is the predictor of a step; between the times it is the
@@ -472,8 +494,11 @@ class TimeIntegrator:
         transient = dataclasses.replace(model, hydrodynamic=bool(self.scene.effects.hydrodynamics))
         return Level(0.0, self.history.initial_speed(), state, self._gap(transient, state.film), model, diag)
 
-    def step(self, levels: list[Level], t_new: float, order: int):
-        """Coupled solve at t_new with BDF_order; (level, error/tolerance) or (None, reason)."""
+    def step(self, levels: list[Level], t_new: float, order: int, extrapolate: bool = True):
+        """Coupled solve at t_new with BDF_order; (level, error/tolerance) or (None, reason).
+        The solve starts from the position and deformation extrapolated through the levels the
+        BDF reads, or, without ``extrapolate``, from the last level's (a jump over an impasse,
+        jump_over_impasse)."""
         last = levels[-1]
         dt = t_new - last.time
         previous = [last.time - levels[-2].time] if order == 2 else []
@@ -493,9 +518,10 @@ class TimeIntegrator:
         )
         used = levels[-(order + 1):]
         times = [lv.time for lv in used]
+        start = used if extrapolate else used[-1:]
         initial = WarmStart(
-            z=lagrange(times, [lv.state.z for lv in used], t_new),
-            delta=lagrange(times, [lv.state.delta for lv in used], t_new),
+            z=lagrange(times[-len(start):], [lv.state.z for lv in start], t_new),
+            delta=lagrange(times[-len(start):], [lv.state.delta for lv in start], t_new),
             stiffness=last.diagnostics.stiffness,
         )
         if last.state.reynolds is not None:  # the set follows from the pressure (projected_smoothing)
@@ -541,7 +567,7 @@ class TimeIntegrator:
         for _ in range(IMPASSE_PROBES):
             step *= 4.0
             t_new = min(start + step, target)
-            level, outcome = self.step(levels, t_new, 1)
+            level, outcome = self.step(levels, t_new, 1, extrapolate=False)
             if level is not None:
                 return dataclasses.replace(level, impasse=pocket)
             self.rejected += 1
@@ -578,6 +604,7 @@ class TimeIntegrator:
         breaks = sorted({b for b in history.breakpoints() + self.base.breakpoints() if 0.0 < b < history.end})
         breaks.append(history.end)
         dt, order, failure, failed = first, 1, "", 0
+        attempt = None  # (dt, error) of the last attempt from this level that failed the error test
         asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
         longest = None  # the longest step the error test asked for since the motion last changed (creeping)
         ceiling = StepCeiling(floor=shortest)
@@ -627,6 +654,7 @@ class TimeIntegrator:
                                     stepping.append(jump)
                                 bar.update(jump.time - t)
                                 failed, solve_failed, order, dt = 0, False, 1, jump.time - t
+                                attempt = None
                                 # the motion has not changed: the creep test keeps its reference
                                 # (a jump is at least 4 times motion.tolerance times it, so the
                                 # next jump needs the error test to shorten the steps again)
@@ -645,11 +673,14 @@ class TimeIntegrator:
                         dt = max(0.25 * (t_new - t), shortest)
                         continue
                     failed = 0
-                    factor = SAFETY * max(outcome, 1e-10) ** (-1.0 / (order + 1))
                     if outcome > 1.0 and t_new - t > max(MIN_STEP, shortest):
                         self.rejected += 1
-                        dt = max((t_new - t) * max(SHRINK, min(factor, 1.0)), shortest)
+                        factor = rejection_factor(t_new - t, outcome, order, attempt)
+                        attempt = (t_new - t, outcome)
+                        dt = max((t_new - t) * factor, shortest)
                         continue
+                    factor = SAFETY * max(outcome, 1e-10) ** (-1.0 / (order + 1))
+                    attempt = None
                     levels.append(level)
                     if stepping is not levels:
                         stepping.append(level)
