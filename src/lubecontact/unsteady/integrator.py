@@ -25,7 +25,9 @@ a root mean square over the nodes below 1 (the weighted RMS norm of ODE codes su
 SUNDIALS: a sharp change in one node's history does not force the whole contact to tiny
 steps), and the
 next step is scaled by 0.9 E^{-1/(p+1)} within [SHRINK, GROWTH]: steps are short while the
-film moves and grow geometrically (log-spaced) as it settles. Steps land on the motion's
+film moves and grow geometrically (log-spaced) as it settles. A step rejected twice from one
+level is scaled by the order its two estimates show instead (rejection_factor: a kink within
+the step, a pocket sealing, makes the estimate fall as dt). Steps land on the motion's
 breakpoints. A step's coupled solve stops on the same weight: its last film correction
 below NONLINEAR_FRACTION of it at every node (Squeeze.settled, docs/physics.md section 14).
 Where a pocket of the film seals, the state jumps (an impasse of the model): a step over it
@@ -555,8 +557,10 @@ class TimeIntegrator:
         pocket's pressure must fall to its neighbours' at once, and the films with it. The
         integrator takes that jump as the model says: first-order steps of 4, 16, ...
         4^IMPASSE_PROBES times ``shortest`` (the failed step, or the longer step the error test
-        last asked for), up to the next breakpoint ``target``, the first whose solve converges
-        accepted without the error test (a jump has no local error to test; its estimate stays
+        last asked for), up to the next breakpoint ``target``, each solve started from the last
+        level (the slope of the short steps before it, carried over a step thousands of times
+        longer, is no prediction: a light mass's ringing sent such starts metres away), the
+        first whose solve converges accepted without the error test (a jump has no local error to test; its estimate stays
         in the level, whose ``impasse`` says where the pocket sealed). Its length bounds how
         late the jump is taken.
         A run that passes every step never comes here: its answers do not change."""
