@@ -560,9 +560,9 @@ class TimeIntegrator:
         last asked for), up to the next breakpoint ``target``, each solve started from the last
         level (the slope of the short steps before it, carried over a step thousands of times
         longer, is no prediction: a light mass's ringing sent such starts metres away), the
-        first whose solve converges accepted without the error test (a jump has no local error to test; its estimate stays
-        in the level, whose ``impasse`` says where the pocket sealed). Its length bounds how
-        late the jump is taken.
+        first whose solve converges accepted without the error test (a jump has no local error
+        to test; its estimate stays in the level, whose ``impasse`` says where the pocket
+        sealed). Its length bounds how late the jump is taken.
         A run that passes every step never comes here: its answers do not change."""
         if not pocket:
             return None
