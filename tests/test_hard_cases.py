@@ -36,6 +36,7 @@ QUICK = {"mesh.ny": 1, "solver.max_iterations": 20}
 SOFT_FILM = {"effects.asperity_contact": False, "mesh.ny": 1, "mesh.nx": 401, "mesh.x_min": -2.5e-4, "mesh.x_max": 1e-4}
 GREASE = {**QUICK, "mesh.nx": 21, "motion.kind": "oscillation", "motion.amplitude": 1e-3, "motion.frequency": 20.0,
           "motion.cycles": 1}
+FRETTING = {**GREASE, "motion.amplitude": 50e-6, "motion.frequency": 100.0}  # 50 um at 100 Hz, one cycle
 
 CASES = {
     # name: (transient?, scene overrides, what happens today, measured)
@@ -81,8 +82,7 @@ CASES = {
     "grease_10_Pa_s_51_nodes": (True, {**GREASE, "mesh.nx": 51, "lubricant.viscosity": 10.0},
                                 "converges since a step whose Newton stalls may meet the step's own pressure test "
                                 "(it failed at t = 3.1e-6 s), 11-15 s"),
-    "fretting_stiff_grease": (True, {**GREASE, "lubricant.viscosity": 100.0, "motion.amplitude": 50e-6,
-                                     "motion.frequency": 100.0},
+    "fretting_stiff_grease": (True, {**FRETTING, "lubricant.viscosity": 100.0},
                               "converges since a step stops at a tenth of its error weight (it failed at t = 5.3e-9 s), "
                               "24-30 s (a longer alarm, LONGER_BUDGET)"),
     # the same fretting on the default 51-node line (the scene). Traced in the twentieth
@@ -90,8 +90,7 @@ CASES = {
     # their scaled residual by 6e9 Pa for a film step of 1e-13 m; then, with that outflow measured
     # as a film change (integrator.Squeeze.outflow_scale_floor), line searches of 1/16 to 1/1024
     # across the inlet's cavitation kinks, and a force balance stalled at 3e-6 of the force
-    "fretting_stiff_grease_51_nodes": (True, {**GREASE, "mesh.nx": 51, "lubricant.viscosity": 100.0,
-                                              "motion.amplitude": 50e-6, "motion.frequency": 100.0},
+    "fretting_stiff_grease_51_nodes": (True, {**FRETTING, "mesh.nx": 51, "lubricant.viscosity": 100.0},
                                        "converges since a step's sealed cells measure their outflow as a film change, "
                                        "its force balance is judged by the displacement that closes it, and a step whose "
                                        "Newton stalls may meet its own pressure test (a step failed at t = 5.3e-9 s), "
@@ -101,8 +100,7 @@ CASES = {
     # t = 6.0e-5 s (6.5 s). Its step's Newton had come within the step's own tests (merit
     # 4.5e-11), then its non-monotone search accepted a 3000-fold rise and it stalled there:
     # a stalled Newton's test is now on its best iterate (monolithic_newton.newton)
-    "fretting_1_Pa_s_51_nodes": (True, {**GREASE, "mesh.nx": 51, "lubricant.viscosity": 1.0,
-                                        "motion.amplitude": 50e-6, "motion.frequency": 100.0},
+    "fretting_1_Pa_s_51_nodes": (True, {**FRETTING, "mesh.nx": 51, "lubricant.viscosity": 1.0},
                                  "converges since a stalled step's Newton is judged on its best iterate (it failed at "
                                  "t = 6.0e-5 s), 4 s"),
     # and under 20 N: the steps crept for minutes (killed at 400 s, t = 15.455 ms) between jumps
@@ -114,9 +112,8 @@ CASES = {
     # beside cells whose pressure the Newton left at -0.8 MPa. Since a rejected step's next
     # attempt follows the error's observed order (integrator.rejection_factor) and a jump starts
     # from the last level, not from the extrapolated one, it runs to the end (twenty-second session)
-    "fretting_1_Pa_s_20_N_51_nodes": (True, {**GREASE, "mesh.nx": 51, "lubricant.viscosity": 1.0,
-                                             "operating.force": 20.0, "motion.amplitude": 50e-6,
-                                             "motion.frequency": 100.0},
+    "fretting_1_Pa_s_20_N_51_nodes": (True, {**FRETTING, "mesh.nx": 51, "lubricant.viscosity": 1.0,
+                                             "operating.force": 20.0},
                                       "converges since a rejected step follows the error's observed order and a jump "
                                       "starts from the last level (it failed at t = 54.5 ms after 10 jumps), 5 jumps, "
                                       "15 s (a longer alarm, LONGER_BUDGET)"),
@@ -177,9 +174,8 @@ CASES = {
     # and by the twenty-first session's sweep of the 51-node line's frettings: the 10 Pa s one
     # under 20 N failed at t = 0.36 s (45 s); since a rejected step follows the error's observed
     # order and a jump starts from the last level it runs (7 jumps)
-    "fretting_10_Pa_s_20_N_51_nodes": (True, {**GREASE, "mesh.nx": 51, "lubricant.viscosity": 10.0,
-                                              "operating.force": 20.0, "motion.amplitude": 50e-6,
-                                              "motion.frequency": 100.0},
+    "fretting_10_Pa_s_20_N_51_nodes": (True, {**FRETTING, "mesh.nx": 51, "lubricant.viscosity": 10.0,
+                                              "operating.force": 20.0},
                                        "converges since a rejected step follows the error's observed order and a "
                                        "jump starts from the last level (it failed at t = 0.36 s), 7 jumps, 21-23 s "
                                        "(a longer alarm, LONGER_BUDGET)"),
