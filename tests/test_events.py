@@ -8,6 +8,7 @@ for CF units and names as the other transient outputs are."""
 import contextlib
 import io
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -17,6 +18,7 @@ from cfcheck import cf_findings
 import lubecontact as lc
 from lubecontact.cli.main import main
 from lubecontact.unsteady.events import dense_film, locate_events
+from lubecontact.unsteady.transient import impasse_jumps, times_within_jumps
 
 # film h(t) = H0 + A sin(omega t) on a few nodes; R = R0 exp(h / LENGTH), so R > R0 exp(h*/LENGTH)
 # exactly when sin(omega t) > s = (h* - H0) / A: the open intervals are known in closed form
@@ -250,3 +252,20 @@ def test_the_minimum_duration_keeps_every_old_hash():
     assert shorter.hash != table1.hash and lc.load_scene(shorter) == shorter
     with pytest.raises(lc.SceneError, match=r"interface.min_event_duration = -1: out of range; allowed: a finite number >= 0"):
         lc.load_scene("config/scenes/table1.yaml", {"interface.min_event_duration": -1})
+
+
+def test_a_time_located_within_an_impasse_jump_is_said_to_be_uncertain_by_it():
+    """transient.times_within_jumps: a step that jumped over an impasse (accepted without the
+    error test) carries a crossing found on its dense output only to within its length;
+    times outside every jump, and at a jump's ends (the levels themselves), say nothing."""
+    levels = [SimpleNamespace(time=t, impasse=impasse) for t, impasse in
+              ((0.0, ""), (1e-3, ""), (1.2e-3, "x = 0 mm"), (2e-3, ""), (12e-3, "x = 0.1 mm"))]
+    jumps = impasse_jumps(levels)
+    assert [(before.time, level.time) for before, level in jumps] == [(1e-3, 1.2e-3), (2e-3, 12e-3)]
+    note = times_within_jumps(jumps, {"the reconnection": 5e-3, "event 1's start": 0.5e-3,
+                                      "event 1's end": 1.2e-3, "event 2's start": 1.1e-3})
+    assert "the reconnection at t = 0.005 s, within the jump from 0.002 to 0.012 s" in note
+    assert "event 2's start at t = 0.0011 s, within the jump from 0.001 to 0.0012 s" in note
+    assert "event 1" not in note
+    assert times_within_jumps(jumps, {"the reconnection": 1.5e-3}) == ""
+    assert times_within_jumps([], {"the reconnection": 5e-3}) == ""

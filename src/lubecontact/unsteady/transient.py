@@ -72,6 +72,20 @@ def impasse_note(jumps) -> str:
             + ". A time within such a step is uncertain by its length (longest_impasse_jump)")
 
 
+def times_within_jumps(jumps, located: dict[str, float]) -> str:
+    """What a run says of the times it located (``located``: name -> absolute time, s: the
+    reconnection, the events' edges) that fall inside an impasse jump (``impasse_jumps``),
+    "" where none does. The state jumped somewhere within such a step, accepted without the
+    error test, and the dense output across it is a first-order line through its ends: a
+    crossing found on it is known only to lie within the step, not where the root puts it."""
+    inside = [f"{name} at t = {t:.6g} s, within the jump from {before.time:.6g} to {level.time:.6g} s"
+              for name, t in located.items() for before, level in jumps if before.time < t < level.time]
+    if not inside:
+        return ""
+    return ("located within an impasse jump, so known only to lie somewhere in that step (its length is the "
+            "uncertainty): " + "; ".join(inside))
+
+
 def tighter_reconnect_time(scene, history, rest: float, progress: bool) -> float:
     """reconnect_time of the same motion at motion.tolerance / ERROR_BAR_TIGHTENING (NaN if
     that run fails)."""
@@ -207,6 +221,12 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     opened = level_events(levels, resistance, threshold, min_duration)
     relative = level_events(levels, resistance, scene.motion.reconnect_factor * rest, min_duration)
     scalars |= event_scalars(opened, relative)
+    located = {"the reconnection": history.rest_from + recon} if math.isfinite(recon) else {}
+    for k, event in enumerate(opened.events, start=1):
+        located |= {f"event {k}'s start": event.start, f"event {k}'s end": event.end}
+    inside = times_within_jumps(jumps, located)
+    if inside:
+        notes.append(inside)
     peaks = None
     fraction = math.nan
     if history.period is not None:
