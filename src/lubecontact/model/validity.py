@@ -24,7 +24,9 @@ Flags:
   factors (Eq. 2) are fitted for h/sigma > 0.5.
 - ``inlet``: the inlet is too short for the film: a rigid cylinder's film with the inlet at
   X = x_min / sqrt(2 R h) is INLET_FILM_DEFICIT or more below the fully flooded one
-  (:func:`lubecontact.physics.inlet.inlet_film_fraction`, h the thinnest fluid gap).
+  (:func:`lubecontact.physics.inlet.inlet_film_fraction`, h the thinnest fluid gap). The
+  inlet is upstream of the sliding: at x_max where U < 0 (the return stroke of an
+  oscillation, whose automatic domain carries its inlet at x_min only).
 """
 
 from __future__ import annotations
@@ -135,9 +137,11 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
     if hydrodynamic:
         gap = state.expected_gap if state.expected_gap is not None else state.film
         thinnest = float(np.min(gap))
-        inlet = abs(float(mesh.x[0])) / math.sqrt(2.0 * scene.geometry.radius * thinnest)
+        returning = scene.operating.speed < 0.0
+        end, key = ("x_max", "mesh.x_max: the sliding reverses") if returning else ("x_min", "mesh.x_min")
+        inlet = abs(float(mesh.x[-1 if returning else 0])) / math.sqrt(2.0 * scene.geometry.radius * thinnest)
         fraction = inlet_film_fraction(inlet)
         if 1.0 - fraction >= INLET_FILM_DEFICIT:
-            flags["inlet"] = (f"inlet at X = x_min/sqrt(2 R h) = {inlet:.3g} (h = {thinnest:.3g} m): a rigid film "
-                              f"would be {fraction:.3g} of the fully flooded one; lengthen the domain (mesh.x_min)")
+            flags["inlet"] = (f"inlet at X = {end}/sqrt(2 R h) = {inlet:.3g} (h = {thinnest:.3g} m): a rigid film "
+                              f"would be {fraction:.3g} of the fully flooded one; lengthen the domain ({key})")
     return flags
