@@ -188,7 +188,7 @@ CASES = {
     # crept to the next seal and every jump (0.014 to 9.4 s) failed in both solvers, the nested
     # one cycling or stalling, the Newton's line search finding no descent. 55-63 s of CPU, not
     # cheap: most of it is the 157 steps before. The same stop on 31 x 21, 51 x 21, 31 x 31 and
-    # 41 x 41 runs to the end only by chains of 5 to 16 jumps of up to 4.5 s, and at 10 N on
+    # 41 x 41 runs to the end only by chains of 5 to 16 jumps of up to 8.1 s, and at 10 N on
     # 51 x 51 by 9 jumps in 117 s: bench/EXPERIMENTS.md, twenty-third session
     "grease_stop_20_N": (True, {"lubricant.viscosity": 10.0, "operating.force": 20.0, "operating.speed": 1.0,
                                 "motion.kind": "stop", "motion.ramp": 1e-3, "motion.duration": 10.0},
