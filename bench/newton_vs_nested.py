@@ -1,14 +1,17 @@
 """The one-Newton solver (solver.method: newton) against the nested one, in one process:
 wall time of each solve, their ratio, iterations and whether each converged.
 
-    .venv/bin/python bench/newton_vs_nested.py
+    .venv/bin/python bench/newton_vs_nested.py > bench/newton_vs_nested.md
 
 Points: Table 1 as a 51-node line contact across the paper's speeds, Table 1 on 31 x 31
-at 0.01 and 1 m/s, and the soft elastic line contact (no asperity contact, 401 nodes) at
+and on the default 51 x 51 at 0.01 and 1 m/s, and the soft elastic line contact (no asperity contact, 401 nodes) at
 0.01, 0.003 and 0.001 m/s (g_E 10, 19, 32), where the nested solver stops. Each solve is
 timed once after a warm-up solve of the same scene (tables built, imports done).
 """
 
+import datetime
+import os
+import subprocess
 import time
 
 import lubecontact as lc
@@ -17,7 +20,8 @@ TABLE1 = "config/scenes/table1.yaml"
 SOFT = {"effects.asperity_contact": False, "mesh.ny": 1, "mesh.nx": 401, "mesh.x_min": -2.5e-4, "mesh.x_max": 1e-4}
 POINTS = (
     [(f"Table 1, line 51, {u:g} m/s", {"mesh.nx": 51, "mesh.ny": 1, "operating.speed": u}) for u in (1e-4, 1e-2, 1.0, 10.0)]
-    + [(f"Table 1, 31 x 31, {u:g} m/s", {"mesh.nx": 31, "mesh.ny": 31, "operating.speed": u}) for u in (0.01, 1.0)]
+    + [(f"Table 1, {n} x {n}, {u:g} m/s", {"mesh.nx": n, "mesh.ny": n, "operating.speed": u})
+       for n in (31, 51) for u in (0.01, 1.0)]
     + [(f"soft elastic film, line 401, {u:g} m/s", {**SOFT, "operating.speed": u}) for u in (0.01, 0.003, 0.001)]
 )
 
@@ -35,6 +39,11 @@ def timed(overrides):
 
 
 if __name__ == "__main__":
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    print("# One Newton against the nested solver\n")
+    print(f"Written by `bench/newton_vs_nested.py` on {datetime.date.today()} at {commit} (load average "
+          f"{os.getloadavg()[0]:.2f} at the start, {os.cpu_count()} CPUs). The nested column is the default (nested, "
+          "finished by one Newton where it stops); wall seconds of one solve after a warm-up.\n")
     print("| point | nested (s) | converged | it. | newton (s) | converged | it. | newton / nested |")
     print("|---|---|---|---|---|---|---|---|")
     for label, overrides in POINTS:

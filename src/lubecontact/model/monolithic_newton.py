@@ -68,19 +68,22 @@ from lubecontact.physics.film_estimates import hertz_half_width
 # for Linear and Nonlinear Equations", SIAM, section 8.1: 1e-4 and halving).
 SUFFICIENT_DECREASE = 1e-4
 SMALLEST_STEP = 2.0**-12
-# A time step's line search is non-monotone (Grippo, Lampariello & Lucidi 1986, SIAM J. Numer.
-# Anal. 23:707): a step need only lower the merit below the largest of the last this many
-# iterates' merits, so a step that crosses the kinks of several cavitation pairs at once (a
-# squeeze film's inlet near zero pressure) is taken whole instead of in slivers. Measured on
+# A Newtonian film's line search is non-monotone (Grippo, Lampariello & Lucidi 1986, SIAM J.
+# Numer. Anal. 23:707): a step need only lower the merit below the largest of the last this
+# many iterates' merits, so a step that crosses the kinks of several cavitation pairs at once
+# (a squeeze film's inlet near zero pressure) is taken whole instead of in slivers. Measured on
 # the 100 Pa s fretting on the 51-node line (tests/test_hard_cases.py): with the monotone
 # search, steps of 1/16 to 1/1024 stalled a step's Newton at a residual of 1e-5 (bench/
 # EXPERIMENTS.md, twentieth session). Their own memory was 10; 5 keeps the stall test
 # (STALL_ITERATIONS) meaningful. Since a stalled step may meet its own pressure test
 # (converged, twenty-first session) the memory sets the cost, not the outcome: with 1, 2, 3,
 # 5 and 10 the fretting and the 10 Pa s oscillation on the 51-node line both run to the end,
-# in 22, 12, 16, 12 and 14 s and in 15, 12, 12, 11 and 15 s. A steady solve, and a grease's
-# step (newtonian_step), stay monotone: non-monotone, the steady starts of three Bingham stops
-# (tests/test_grease_stop.py) stalled.
+# in 22, 12, 16, 12 and 14 s and in 15, 12, 12, 11 and 15 s. A steady solve of a Newtonian
+# film searches so too since the twenty-fourth session: monotone, the steady Newton on the
+# default 51 x 51 Table 1 mesh at 0.01 m/s stalled (halving its steps to 1/32 at two pairs at
+# the cylinder's ends) and failed after 26 s of load continuation; non-monotone it converges
+# in 10 iterations, 1.2 s. A grease's solves stay monotone: non-monotone, the steady starts of
+# three Bingham stops (tests/test_grease_stop.py) stalled.
 NONMONOTONE_MEMORY = 5
 # With smooth surfaces a step may close the film by at most this fraction at any node
 # (fraction to the boundary, as interior-point methods keep their iterates feasible).
@@ -188,6 +191,20 @@ def newtonian_step(model: Model) -> bool:
     alone, ran in 200 steps against 78 and reconnected 2.7 % later (bench/EXPERIMENTS.md,
     twentieth session): its plug leaves the pressure undetermined as the squeeze weakens."""
     return model.squeeze is not None and yield_stress_law(model) is None
+
+
+def projects_pressure(model: Model) -> bool:
+    """Whether a line search projects its trial pressures onto p >= 0, the projected Newton
+    path (Bertsekas 1982, SIAM J. Control Optim. 20:221): a Newtonian film's time step with
+    cavitation. A direction that carries a region of an inlet across its cavitation boundary
+    at once (10 Pa s at t ~ 1 us: nodes at h/sigma ~ 400 taken from +1.8e-4 to -1.4e-4 of the
+    peak pressure by the full step) leaves their linearised pressures below zero, where the
+    Fischer-Burmeister residual is 2p; projected they sit at p = 0 with their outflow >= 0,
+    their solution (bench/EXPERIMENTS.md, twenty-fourth session). Steady solves are not
+    projected: projected, a steady Newton on Table 1 landed elsewhere within its tolerance,
+    the steady start of a Bingham stop stalled, and with the non-monotone search Moes' M = 50
+    reference line failed."""
+    return newtonian_step(model) and model.scene.effects.cavitation != "none"
 
 
 def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisation:
@@ -487,7 +504,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
     forcing = 0.1
     influence = dense_influence(model)
     history = [lin.merit()]
-    memory = NONMONOTONE_MEMORY if newtonian_step(model) else 1
+    memory = NONMONOTONE_MEMORY if yield_stress_law(model) is None else 1
     best = (lin, None)  # the iterate of least merit, and dF/dz of its Newton direction
     for iteration in range(1, max_iterations + 1):
         if converged(model, lin, tolerance, stiffness):
@@ -535,16 +552,19 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
 def line_search(model: Model, it: Iterate, lin: Linearisation, direction, reference: float):
     """Armijo backtracking along ``direction`` (newton_direction): a step is taken when its
     merit is enough below ``reference`` (newton passes the largest merit of its last
-    NONMONOTONE_MEMORY iterates in a Newtonian film's time step, else the current one's).
+    NONMONOTONE_MEMORY iterates for a Newtonian film, a grease's current one); where
+    projects_pressure, each trial point's pressure is projected onto p >= 0.
     ((iterate, its linearisation) of the first step taken, or None; the linearisation at the
     longest step tried, or None where it left the model)."""
     d_p, d_delta, dz, _ = direction
     step = longest_film_step(model, lin, d_delta, dz)
+    projected = projects_pressure(model)
     merit = reference
     first = None
     while step >= SMALLEST_STEP:
-        trial = Iterate(it.pressure + step * d_p, it.delta if d_delta is None else it.delta + step * d_delta,
-                        it.z + step * dz)
+        pressure = it.pressure + step * d_p
+        trial = Iterate(np.maximum(pressure, 0.0) if projected else pressure,
+                        it.delta if d_delta is None else it.delta + step * d_delta, it.z + step * dz)
         try:
             candidate = linearise(model, trial, lin.smoothing)
         except ValueError:
