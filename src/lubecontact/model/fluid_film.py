@@ -13,7 +13,8 @@ from functools import partial
 import numpy as np
 
 from lubecontact.model.model import Model, State
-from lubecontact.numerics.control_volume import ControlVolumeMean, control_volume_mean
+from lubecontact.numerics.control_volume import ControlVolumeMean, GaussHalfCells, control_volume_mean
+from lubecontact.numerics.expected_gap_cells import ExpectedGapHalfCells
 from lubecontact.physics.flow_factors import (
     expected_gap_and_slope,
     percolating_coefficient_and_slope,
@@ -35,14 +36,19 @@ from lubecontact.physics.yield_stress_flow import YieldStressLaw
 FLUID_FILM_FLOOR_SIGMAS = 0.0
 
 
-def content_law(model: Model):
-    """h -> (h_T, dh_T/dh): Patir-Cheng expected gap, or with flow factors between surfaces of
-    unequal roughness (roughness.split != 0.5) the Couette gap h_T + sigma phi_s of the shear
-    flow factor (shear_factors.couette_gap)."""
+def carries_shear_flow(model: Model) -> bool:
+    """Whether the Couette content holds the shear flow factor: flow factors between rough
+    surfaces of unequal roughness (roughness.split != 0.5)."""
     scene = model.scene
+    return model.contact is not None and scene.effects.flow_factors and scene.roughness.split != 0.5
+
+
+def content_law(model: Model):
+    """h -> (h_T, dh_T/dh): Patir-Cheng expected gap, or where the shear flow factor enters
+    (carries_shear_flow) the Couette gap h_T + sigma phi_s (shear_factors.couette_gap)."""
     sigma = model.contact.sigma if model.contact is not None else None
-    if sigma is not None and scene.effects.flow_factors and scene.roughness.split != 0.5:
-        return partial(couette_gap, sigma=sigma, split=scene.roughness.split)
+    if carries_shear_flow(model):
+        return partial(couette_gap, sigma=sigma, split=model.scene.roughness.split)
     return lambda h: expected_gap_and_slope(h, sigma)
 
 
@@ -71,10 +77,15 @@ def squeeze_content(model: Model, film: np.ndarray) -> ControlVolumeMean:
     (docs/physics.md section 14): with rough surfaces the cell's mean of the content frozen
     below FLUID_FILM_FLOOR_SIGMAS (numerics/control_volume.py: a cell empties gradually as
     its film crosses the floor, not at once when its node does); smooth surfaces, whose
-    content is the film itself, keep the nodal value (lumped: second order without a kink)."""
+    content is the film itself, keep the nodal value (lumped: second order without a kink).
+    The expected gap's half cells have a closed form (numerics/expected_gap_cells.py, for the
+    floor at h = 0); the Couette gap's are a quadrature."""
     if model.contact is None:
         return ControlVolumeMean.lumped(*content_law(model)(film))
-    return control_volume_mean(film, frozen_content_law(model), FLUID_FILM_FLOOR_SIGMAS * model.contact.sigma)
+    if carries_shear_flow(model):
+        return control_volume_mean(film, GaussHalfCells(frozen_content_law(model),
+                                                        FLUID_FILM_FLOOR_SIGMAS * model.contact.sigma))
+    return control_volume_mean(film, ExpectedGapHalfCells(model.contact.sigma))
 
 
 def frozen_content_law(model: Model):

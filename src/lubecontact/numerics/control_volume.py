@@ -8,9 +8,11 @@ step across. Here the film is linear between neighbouring nodes, and the cell's 
 
     c_i = mean of g over the cell   (line: along x; 2-D: the mean of the x and y means),
 
-each half cell from h_i to the face's film (h_i + h_j)/2 by Gauss-Legendre quadrature split
-at the kink, so c_i is smooth in the films wherever a half cell's film is not flat. Its
-slopes dc_i/dh_i and dc_i/dh_j (neighbours) give the squeeze term's Jacobian exactly:
+each half cell from h_i to the face's film (h_i + h_j)/2: for any law by Gauss-Legendre
+quadrature split at the kink (GaussHalfCells), for the expected gap in closed form
+(numerics/expected_gap_cells.py), so c_i is smooth in the films wherever a half cell's film is
+not flat. Its slopes dc_i/dh_i and dc_i/dh_j (neighbours) give the squeeze term's Jacobian
+exactly:
 
     d/dh_i mean = int_0^1 g'(h(u)) (1 - u/2) du,  d/dh_j mean = int_0^1 g'(h(u)) u/2 du,
 
@@ -83,20 +85,31 @@ class ControlVolumeMean:
         return sp.diags(diagonals, offsets, shape=(n, n), format="csr")
 
 
-def _half_cell(start: np.ndarray, neighbour: np.ndarray, law, kink: float):
-    """(mean, d mean/d start, d mean/d neighbour) of law over the film from ``start`` to the
-    face's film (start + neighbour)/2, linear in between, split at ``kink``: the piece beyond
-    the kink is evaluated only where the half cell crosses it (elsewhere it has no length)."""
-    face = 0.5 * (start + neighbour)
-    crossing = (start - kink) * (face - kink) < 0.0
-    split = np.where(crossing, (kink - start) / np.where(crossing, face - start, 1.0), 1.0)
-    mean = np.zeros_like(start)
-    d_start = np.zeros_like(start)
-    d_neighbour = np.zeros_like(start)
-    _add_piece((mean, d_start, d_neighbour), start, face, 0.0, split, law, Ellipsis)
-    if crossing.any():
-        _add_piece((mean, d_start, d_neighbour), start, face, split, 1.0, law, crossing)
-    return mean, d_start, d_neighbour
+class GaussHalfCells:
+    """Half-cell means of a law h -> (g, dg/dh), smooth on each side of ``kink``, by
+    Gauss-Legendre quadrature split at the kink (any law; a law with a closed form may have
+    its own, numerics/expected_gap_cells.py)."""
+
+    def __init__(self, law, kink: float):
+        self.law = law
+        self.kink = kink
+
+    def __call__(self, start: np.ndarray, neighbour: np.ndarray):
+        """(mean, d mean/d start, d mean/d neighbour) of the law over the film from ``start``
+        to the face's film (start + neighbour)/2, linear in between, split at the kink: the
+        piece beyond the kink is evaluated only where the half cell crosses it (elsewhere it
+        has no length)."""
+        kink = self.kink
+        face = 0.5 * (start + neighbour)
+        crossing = (start - kink) * (face - kink) < 0.0
+        split = np.where(crossing, (kink - start) / np.where(crossing, face - start, 1.0), 1.0)
+        mean = np.zeros_like(start)
+        d_start = np.zeros_like(start)
+        d_neighbour = np.zeros_like(start)
+        _add_piece((mean, d_start, d_neighbour), start, face, 0.0, split, self.law, Ellipsis)
+        if crossing.any():
+            _add_piece((mean, d_start, d_neighbour), start, face, split, 1.0, self.law, crossing)
+        return mean, d_start, d_neighbour
 
 
 def _add_piece(sums, start, face, low, high, law, where):
@@ -115,27 +128,41 @@ def _add_piece(sums, start, face, low, high, law, where):
             total[where] += term
 
 
-def _axis_mean(film: np.ndarray, law, kink: float):
-    """(mean, own slope, slope to the previous node, slope to the next) along the last axis."""
-    previous = np.concatenate([film[..., :1], film[..., :-1]], axis=-1)
-    following = np.concatenate([film[..., 1:], film[..., -1:]], axis=-1)
-    m_prev, own_prev, d_prev = _half_cell(film, previous, law, kink)
-    m_next, own_next, d_next = _half_cell(film, following, law, kink)
-    n = film.shape[-1]
+def _axis_weights(n: int):
+    """The weights of a node's previous and next half cell along an axis of n nodes (each
+    half a cell; boundary nodes: their one half cell)."""
     w_prev, w_next = np.full(n, 0.5), np.full(n, 0.5)
-    w_prev[0], w_next[0] = 0.0, 1.0  # boundary nodes: their one half cell
+    w_prev[0], w_next[0] = 0.0, 1.0
     w_prev[-1], w_next[-1] = 1.0, 0.0
-    return (w_prev * m_prev + w_next * m_next, w_prev * own_prev + w_next * own_next,
-            w_prev * d_prev, w_next * d_next)
+    return w_prev, w_next
 
 
-def control_volume_mean(film: np.ndarray, law, kink: float) -> ControlVolumeMean:
-    """The cell means of ``law`` (h -> (g, dg/dh), smooth on each side of ``kink``) over the
-    film (ny, nx), linear between nodes; one row (ny = 1) is a line: x only."""
-    value, own, west, east = _axis_mean(film, law, kink)
-    zero = np.zeros_like(film)
-    if film.shape[0] == 1:
+def control_volume_mean(film: np.ndarray, half_cells) -> ControlVolumeMean:
+    """The cell means of a law over the film (ny, nx), linear between nodes, from its
+    ``half_cells`` (start, neighbour) -> (mean, d/d start, d/d neighbour) (GaussHalfCells, or
+    a closed form); one row (ny = 1) is a line: x only.
+
+    Every half cell (previous and next, along x and y) goes to ``half_cells`` in one flat
+    array: a call's cost on these meshes is numpy's per-operation overhead, not its length."""
+    axes = [film] if film.shape[0] == 1 else [film, film.T]  # each with its axis last
+    pairs = []
+    for along in axes:
+        pairs.append((along, np.concatenate([along[..., :1], along[..., :-1]], axis=-1)))  # previous node
+        pairs.append((along, np.concatenate([along[..., 1:], along[..., -1:]], axis=-1)))  # next node
+    flat = half_cells(np.concatenate([start.ravel() for start, _ in pairs]),
+                      np.concatenate([neighbour.ravel() for _, neighbour in pairs]))
+    halves = [[part.reshape(pairs[k][0].shape) for k, part in enumerate(np.split(result, len(pairs)))]
+              for result in flat]  # halves[quantity][pair]
+    means = []
+    for axis, along in enumerate(axes):
+        w_prev, w_next = _axis_weights(along.shape[-1])
+        (m_prev, m_next), (own_prev, own_next), (d_prev, d_next) = (q[2 * axis: 2 * axis + 2] for q in halves)
+        means.append((w_prev * m_prev + w_next * m_next, w_prev * own_prev + w_next * own_next,
+                      w_prev * d_prev, w_next * d_next))
+    value, own, west, east = means[0]
+    if len(axes) == 1:
+        zero = np.zeros_like(film)
         return ControlVolumeMean(value, own, west, east, zero, zero)
-    y_value, y_own, south, north = (np.swapaxes(a, 0, 1) for a in _axis_mean(np.swapaxes(film, 0, 1), law, kink))
+    y_value, y_own, south, north = (a.T for a in means[1])
     return ControlVolumeMean(0.5 * (value + y_value), 0.5 * (own + y_own), 0.5 * west, 0.5 * east,
                              0.5 * south, 0.5 * north)
