@@ -188,7 +188,9 @@ CASES = {
     # crept to the next seal at t = 0.60 s and every jump (0.014 to 9.4 s) failed in both
     # solvers, the nested one cycling or stalling, the Newton's line search finding no descent
     # (55-63 s). Since a Newtonian film's step projects its trial pressures onto p >= 0
-    # (monolithic_newton.projects_pressure, twenty-fourth session) the whole 10 s stop runs to
+    # (monolithic_newton.projects_pressure, twenty-fourth session), with the exact cell content
+    # (numerics/expected_gap_cells.py; with the quadrature's it still fails at t = 0.603 s),
+    # the whole 10 s stop runs to
     # its end over 9 jumps (reconnect 3.419 s), but in 224 s of CPU, 685 of its 690 steps before
     # 4 s: the case runs to 0.9 s, past the old failure and its first three jumps (72 s)
     "grease_stop_20_N": (True, {"lubricant.viscosity": 10.0, "operating.force": 20.0, "operating.speed": 1.0,
