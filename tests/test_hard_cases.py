@@ -190,13 +190,14 @@ CASES = {
     # (55-63 s). Since a Newtonian film's step projects its trial pressures onto p >= 0
     # (monolithic_newton.projects_pressure, twenty-fourth session), with the exact cell content
     # (numerics/expected_gap_cells.py; with the quadrature's it still fails at t = 0.603 s),
-    # the whole 10 s stop runs to
-    # its end over 9 jumps (reconnect 3.419 s), but in 224 s of CPU, 685 of its 690 steps before
-    # 4 s: the case runs to 0.9 s, past the old failure and its first three jumps (72 s)
+    # the whole 10 s stop runs to its end over 9 jumps (reconnect 3.419 s), but in 224 s of
+    # CPU, 685 of its 690 steps before 4 s: the case runs to 0.9 s, past the old failure and
+    # its first three jumps (72 s)
     "grease_stop_20_N": (True, {"lubricant.viscosity": 10.0, "operating.force": 20.0, "operating.speed": 1.0,
                                 "motion.kind": "stop", "motion.ramp": 1e-3, "motion.duration": 0.9},
-                         "converges since a step's line search projects its pressures onto p >= 0 (the steps crept "
-                         "to a sealing pocket at t = 0.60 s where no jump converged), 3 jumps, 72 s "
+                         "converges since a step's line search projects its pressures onto p >= 0, with the exact "
+                         "cell content (the steps crept to a sealing pocket at t = 0.60 s where no jump converged), "
+                         "3 jumps, 72 s "
                          "(a longer alarm, LONGER_BUDGET)"),
     # found in the twenty-fourth session (issue 27): the one Newton (solver.method newton) on the
     # default 51 x 51 mesh. Its monotone line search halved its steps to 1/32 at two cavitation

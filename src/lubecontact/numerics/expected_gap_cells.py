@@ -6,7 +6,7 @@ of the content law over a film linear from the node's H_a = h_a/sigma to the fac
 
     m = int_0^1 gamma(H_a + u D) du,   D = H_f - H_a,
 
-with gamma(H) = H Phi(H) + phi(H) (h_T/sigma, Eq. 2 of docs/physics.md section 3) for H >= 0
+with gamma(H) = H Phi(H) + phi(H) (h_T/sigma, the expected gap of docs/physics.md section 3) for H >= 0
 and gamma(0) = phi(0) below (the content frozen where the surfaces interpenetrate). Its
 antiderivative is known: d/dH [(H^2 + 1) Phi(H) + H phi(H)]/2 = gamma(H). Written so that
 no large terms cancel (D may be 1e-6 in a flat film, H 400 in an inlet):
