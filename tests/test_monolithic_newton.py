@@ -181,6 +181,40 @@ def test_the_near_field_preconditioner_inverts_the_reduced_system_when_the_near_
     assert not np.allclose(approximate, y, rtol=0, atol=1e-3)
 
 
+def test_a_kept_preconditioner_gives_the_dense_newton_direction_and_one_that_fails_is_replaced(monkeypatch):
+    """The Krylov direction with the preconditioner kept from an earlier iterate
+    (KeptPreconditioner) against the dense reduced solve (dense_reduced_solve, no GMRES) at
+    the current one: the same direction to GMRES's tolerance, without a new factorisation;
+    a kept preconditioner under which GMRES cannot converge is replaced by a fresh one."""
+    model = Model.assemble(lc.load_scene(TABLE1, {"mesh.nx": 15, "mesh.ny": 9, "operating.speed": 1.0}))
+    start = mn.cold_start(model)
+    earlier = mn.linearise(model, start)
+    d_p, d_delta, dz, _ = mn.newton_direction(model, earlier, 1e-10)
+    later = mn.linearise(model, mn.Iterate(np.maximum(start.pressure + d_p, 0.0), start.delta + d_delta, start.z + dz))
+    dense = mn.newton_direction(model, later, 1e-10, model.deformation.matrix)
+    built = []
+    build = mn.NearFieldPreconditioner.build
+    monkeypatch.setattr(mn.NearFieldPreconditioner, "build", lambda *args: built.append(1) or build(*args))
+    weight = earlier.film_scale / model.scene.operating.force
+    kept = mn.KeptPreconditioner(build(model, earlier, weight))
+    reused = mn.newton_direction(model, later, 1e-10, kept=kept)
+    assert not built
+    for a, b in zip(reused[:3], dense[:3]):
+        np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-6 * np.max(np.abs(b)))
+
+    class Scrambled:  # a diagonal of random signs over six decades: GMRES needs far more than a cycle
+        scale = np.random.default_rng(2).choice([-1.0, 1.0], dense[1].size + 1) * np.logspace(-3, 3, dense[1].size + 1)
+
+        def apply(self, v):
+            return self.scale * v
+
+    kept = mn.KeptPreconditioner(Scrambled())
+    replaced = mn.newton_direction(model, later, 1e-10, kept=kept)
+    assert built == [1] and isinstance(kept.preconditioner, mn.NearFieldPreconditioner)
+    for a, b in zip(replaced[:3], dense[:3]):
+        np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-6 * np.max(np.abs(b)))
+
+
 def test_a_solve_that_stops_says_why_each_solver_stopped(monkeypatch):
     """Never silent: where the nested solve runs out of iterations without a failure of its own
     and the Newton that finishes it fails too, the notes say NOT CONVERGED with the nested

@@ -24,8 +24,9 @@ contact stiffness and the influence operator K (an FFT). The pressure update is 
 with the LU factors and the remaining (delta, z) system, the identity minus K times the
 fluid and contact stiffness, is solved densely on line contacts up to DENSE_NODES nodes and
 otherwise by GMRES, each product one back-substitution and one FFT, preconditioned by the
-same system with K cut to its near field (NearFieldPreconditioner; without deformation it
-is one scalar equation). A backtracking line search on the
+same system with K cut to its near field (NearFieldPreconditioner, factorised once and kept
+across the steps of a solve while it serves: KeptPreconditioner; without deformation it is
+one scalar equation). A backtracking line search on the
 scaled residual norm (Armijo) globalises the step; with smooth surfaces the step is also
 kept short of closing the film (h > 0 at every node: the smooth film has no contact law).
 
@@ -292,11 +293,13 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
                          pressure_scale, scale_h, smoothing, load_slope, slopes, parts)
 
 
-def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None):
+def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None,
+                     kept: KeptPreconditioner | None = None):
     """(d pressure (ny, nx), d delta (ny, nx), d z, dF/dz at fixed delta) of the Newton step:
     the pressure eliminated with the LU factors of J_pp, then (delta, z) (module docstring);
     ``influence``: K as a dense matrix (dense_influence) for the dense reduced solve of
-    small meshes, else GMRES. Raises RuntimeError where a linear solve fails."""
+    small meshes, else GMRES, its preconditioner ``kept`` across the steps of a solve while it
+    serves (KeptPreconditioner). Raises RuntimeError where a linear solve fails."""
     mesh = model.mesh
     area = mesh.nodal_area
     force = model.scene.operating.force
@@ -324,7 +327,7 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
     if influence is not None:
         y = dense_reduced_solve(model, lin, lu, weight, rhs, influence)
     else:
-        y = krylov_reduced_solve(model, lin, pressure_response, weight, rhs, forcing)
+        y = krylov_reduced_solve(model, lin, pressure_response, weight, rhs, forcing, kept)
     d_delta, dz = y[:n].reshape(mesh.shape), float(y[n])
     return base + pressure_response(d_delta + dz), d_delta, dz, stiffness
 
@@ -419,12 +422,21 @@ class NearFieldPreconditioner:
         return np.append((x - dz * self.column)[self.unknowns:], dz)
 
 
+@dataclass
+class KeptPreconditioner:
+    """The NearFieldPreconditioner an earlier step of the same Newton solve factorised, which
+    krylov_reduced_solve reuses while GMRES meets its tolerance with it within one restart
+    cycle (GMRES_RESTART iterations, about one factorisation's time), else factorises anew."""
+
+    preconditioner: NearFieldPreconditioner | None = None
+
+
 def krylov_reduced_solve(model: Model, lin: Linearisation, pressure_response, weight: float, rhs: np.ndarray,
-                         forcing: float) -> np.ndarray:
+                         forcing: float, kept: KeptPreconditioner | None = None) -> np.ndarray:
     """(d delta, dz) of the reduced system by GMRES, each product one back-substitution with
-    the factors of J_pp and one FFT, preconditioned (NearFieldPreconditioner) where there is
-    a fluid. Raises RuntimeError when GMRES does not reach its tolerance (its direction then
-    need not lower the residual)."""
+    the factors of J_pp and one FFT, preconditioned (NearFieldPreconditioner; ``kept``'s while
+    it serves) where there is a fluid. Raises RuntimeError when GMRES does not reach its
+    tolerance (its direction then need not lower the residual)."""
     mesh = model.mesh
     n = mesh.nx * mesh.ny
     area = mesh.nodal_area
@@ -436,13 +448,25 @@ def krylov_reduced_solve(model: Model, lin: Linearisation, pressure_response, we
                          weight * (float(np.sum(dp * area)) - lin.load_slope * dz))
 
     operator = LinearOperator((n + 1, n + 1), matvec=matvec, dtype=float)
-    preconditioner = None
-    if lin.j_pp is not None and lin.j_pp.shape[0]:
-        preconditioner = LinearOperator((n + 1, n + 1), matvec=NearFieldPreconditioner.build(model, lin, weight).apply,
-                                        dtype=float)
-    y, info = gmres(operator, rhs, rtol=forcing, atol=0.0, restart=GMRES_RESTART, maxiter=GMRES_CYCLES,
-                    M=preconditioner)
-    if info != 0 or not np.all(np.isfinite(y)):
+
+    def attempt(near: NearFieldPreconditioner | None):
+        """(y, info, GMRES iterations) preconditioned by ``near`` (None: none)."""
+        iterations = []
+        preconditioner = None if near is None else LinearOperator((n + 1, n + 1), matvec=near.apply, dtype=float)
+        y, info = gmres(operator, rhs, rtol=forcing, atol=0.0, restart=GMRES_RESTART, maxiter=GMRES_CYCLES,
+                        M=preconditioner, callback=iterations.append, callback_type="pr_norm")
+        return y, (info if np.all(np.isfinite(y)) else -1), len(iterations)
+
+    fluid = lin.j_pp is not None and lin.j_pp.shape[0]
+    if fluid and kept is not None and kept.preconditioner is not None:
+        y, info, iterations = attempt(kept.preconditioner)
+        if info == 0 and iterations <= GMRES_RESTART:
+            return y
+    near = NearFieldPreconditioner.build(model, lin, weight) if fluid else None
+    if kept is not None:
+        kept.preconditioner = near
+    y, info, _ = attempt(near)
+    if info != 0:
         raise RuntimeError(f"GMRES of the Newton step did not reach its tolerance {forcing:.2g} (info {info})")
     return y
 
@@ -503,6 +527,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
     stiffness = None
     forcing = 0.1
     influence = dense_influence(model)
+    kept = KeptPreconditioner()
     history = [lin.merit()]
     memory = NONMONOTONE_MEMORY if yield_stress_law(model) is None else 1
     best = (lin, None)  # the iterate of least merit, and dF/dz of its Newton direction
@@ -518,7 +543,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
                 f"only to {np.sqrt(2 * history[-1]):.3g} in {STALL_ITERATIONS} iterations")
         merit = lin.merit()
         try:
-            direction = newton_direction(model, lin, forcing, influence)
+            direction = newton_direction(model, lin, forcing, influence, kept)
             stiffness = direction[3]
             if lin is best[0]:
                 best = (lin, stiffness)
@@ -528,7 +553,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
                 # a cavitation pair changed branch within the step (its outflow crossed zero
                 # steeply, as in a squeezed cell of low permeability): the generalised Jacobian
                 # of the full step's point, as an active-set method would take it
-                direction = newton_direction(model, lin.rebranched(full.slopes), forcing, influence)
+                direction = newton_direction(model, lin.rebranched(full.slopes), forcing, influence, kept)
                 accepted, _ = line_search(model, it, lin, direction, max(history[-memory:]))
         except RuntimeError as err:
             return lin, iteration, stiffness, f"Newton step {iteration}: {err}"
