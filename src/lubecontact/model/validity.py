@@ -137,9 +137,9 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
     if hydrodynamic:
         gap = state.expected_gap if state.expected_gap is not None else state.film
         thinnest = float(np.min(gap))
-        returning = scene.operating.speed < 0.0
-        end, key = ("x_max", "mesh.x_max: the sliding reverses") if returning else ("x_min", "mesh.x_min")
-        inlet = abs(float(mesh.x[-1 if returning else 0])) / math.sqrt(2.0 * scene.geometry.radius * thinnest)
+        end, key, node = (("x_max", "mesh.x_max: the sliding reverses", -1) if scene.operating.speed < 0.0
+                          else ("x_min", "mesh.x_min", 0))
+        inlet = abs(float(mesh.x[node])) / math.sqrt(2.0 * scene.geometry.radius * thinnest)
         fraction = inlet_film_fraction(inlet)
         if 1.0 - fraction >= INLET_FILM_DEFICIT:
             flags["inlet"] = (f"inlet at X = {end}/sqrt(2 R h) = {inlet:.3g} (h = {thinnest:.3g} m): a rigid film "

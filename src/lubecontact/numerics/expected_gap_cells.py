@@ -89,17 +89,16 @@ class ExpectedGapHalfCells:
 
         with np.errstate(divide="ignore", invalid="ignore"):  # D = 0 only where the series holds
             dS = (S_f - S_a) / D
-            mean = np.where(series, 0.0, 0.5 * (A + F) + dS)
-            I0 = np.where(series, 0.0, 1.0 + (T_f - T_a) / D)
-            I1 = np.where(series, 0.0, 0.5 + (T_f - dS) / D)
+            closed = (0.5 * (A + F) + dS, 1.0 + (T_f - T_a) / D, 0.5 + (T_f - dS) / D)
 
         g3 = -A * g2
         g4 = (A * A - 1.0) * g2
         g5 = -(A * A - 3.0) * A * g2
-        d = np.where(series, D, 0.0)
-        mean += np.where(series, P_a + T_a + d * (g1 / 2 + d * (g2 / 6 + d * (g3 / 24 + d * (g4 / 120 + d * g5 / 720)))), 0.0)
-        I0 += np.where(series, g1 + d * (g2 / 2 + d * (g3 / 6 + d * (g4 / 24 + d * g5 / 120))), 0.0)
-        I1 += np.where(series, g1 / 2 + d * (g2 / 3 + d * (g3 / 8 + d * (g4 / 30 + d * g5 / 144))), 0.0)
+        d = np.where(series, D, 0.0)  # the series' powers only where it holds
+        taylor = (P_a + T_a + d * (g1 / 2 + d * (g2 / 6 + d * (g3 / 24 + d * (g4 / 120 + d * g5 / 720)))),
+                  g1 + d * (g2 / 2 + d * (g3 / 6 + d * (g4 / 24 + d * g5 / 120))),
+                  g1 / 2 + d * (g2 / 3 + d * (g3 / 8 + d * (g4 / 30 + d * g5 / 144))))
+        mean, I0, I1 = (np.where(series, t, c) for t, c in zip(taylor, closed))
 
         mean[frozen], I0[frozen], I1[frozen] = _PHI_0, 0.0, 0.0
         if across.any():
