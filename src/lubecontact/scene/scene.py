@@ -601,6 +601,11 @@ class Motion(_Section):
     error_bar: bool = _field(
         False, _Flag(), "run again at tolerance/10 and report reconnect_time's time-integration error (twice the cost)"
     )
+    error_norm: str = _field(
+        "rms", _Choice(("rms", "max")),
+        "how a step's node errors make its error: rms (their root mean square) | max (the largest, which does not "
+        "loosen as the mesh refines; docs/physics.md section 14)",
+    )
     mass: float = _field(0.0, _nonnegative("kg"), "moving mass of the contact (0: massless, in force balance at every instant)")
     spring_stiffness: float = _field(
         0.0, _nonnegative("N/m"), "stiffness of the connector's spring; operating.force is its preload at the start"
@@ -630,7 +635,7 @@ class Motion(_Section):
 
     # keys added after scenes were written: left out at their defaults (to_dict), so no hash changes
     LATER_KEYS = ("mass", "spring_stiffness", "vibration", "vibration_acceleration", "vibration_frequency",
-                  "vibration_frequency_end", "vibration_seed", "shock_duration", "rest_refinement")
+                  "vibration_frequency_end", "vibration_seed", "shock_duration", "rest_refinement", "error_norm")
 
     def to_dict(self):
         """None for the default motion; ``error_bar`` and the keys added later (LATER_KEYS) left

@@ -23,7 +23,8 @@ BDF's local error is -D_p/c0 h^{(p+1)}; both constants are computed for the actu
 ``tolerance`` times max(|h|, floor) (floor: sigma with roughness, FILM_FLOOR without), has
 a root mean square over the nodes below 1 (the weighted RMS norm of ODE codes such as
 SUNDIALS: a sharp change in one node's history does not force the whole contact to tiny
-steps), and the
+steps), or with motion.error_norm = max its largest below 1 (step_error: the RMS of one
+node's error falls as the mesh refines, the largest does not), and the
 next step is scaled by 0.9 E^{-1/(p+1)} within [SHRINK, GROWTH]: steps are short while the
 film moves and grow geometrically (log-spaced) as it settles. A step rejected twice from one
 level is scaled by the order its two estimates show instead (rejection_factor: a kink within
@@ -194,6 +195,19 @@ def bdf_coefficients(steps: list[float]) -> list[float]:
     dt, previous = steps
     w = dt / previous
     return [(1 + 2 * w) / ((1 + w) * dt), -(1 + w) / dt, w * w / ((1 + w) * dt)]
+
+
+def step_error(scaled: np.ndarray, norm: str) -> float:
+    """A step's error from its nodes' estimates, each in its own error weight (module
+    docstring): their root mean square (``norm`` "rms", the weighted RMS norm of SUNDIALS)
+    or their largest magnitude ("max", the maximum norm Hairer, Norsett & Wanner give beside
+    it, "Solving ODEs I", section II.4). The RMS of an error at a few nodes falls as one over the root of the node
+    count, so the same motion.tolerance is looser on a finer mesh where the error is a
+    node's own, as where a pocket of the film seals; the max norm is not (docs/physics.md
+    section 14, "The error norm")."""
+    if norm == "max":
+        return float(np.max(np.abs(scaled)))
+    return float(np.sqrt(np.mean(scaled ** 2)))
 
 
 def error_fraction(steps: list[float]) -> float:
@@ -538,7 +552,8 @@ class TimeIntegrator:
             return None, diag.failure or "coupled solve did not meet its tolerances"
         predicted = lagrange(times, [lv.state.film for lv in used], t_new)
         fraction = error_fraction([dt] + [lv.time - lv_prev.time for lv, lv_prev in zip(used[::-1], used[::-1][1:])])
-        error = float(np.sqrt(np.mean((fraction * (state.film - predicted) / model.squeeze.error_weight(state.film)) ** 2)))
+        error = step_error(fraction * (state.film - predicted) / model.squeeze.error_weight(state.film),
+                           self.scene.motion.error_norm)
         gap = self._gap(model, state.film)
         if state.reynolds is not None:
             state.reynolds.factor = None  # LU factors: not needed after the step, megabytes each
