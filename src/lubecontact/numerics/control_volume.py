@@ -63,6 +63,11 @@ class ControlVolumeMean:
         out[:-1, :] += self.north[:-1, :] * v[1:, :]
         return out
 
+    def frozen(self) -> np.ndarray:
+        """The cells whose mean moves with none of the films it depends on (every slope 0):
+        the whole cell below the law's kink, its content frozen (a sealed pocket)."""
+        return (self.own == 0) & (self.west == 0) & (self.east == 0) & (self.south == 0) & (self.north == 0)
+
     def transpose(self, w: np.ndarray) -> np.ndarray:
         """(dc/dh)^T w for w (ny, nx): the adjoint of ``apply``."""
         out = self.own * w

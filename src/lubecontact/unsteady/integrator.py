@@ -197,6 +197,36 @@ def bdf_coefficients(steps: list[float]) -> list[float]:
     return [(1 + 2 * w) / ((1 + w) * dt), -(1 + w) / dt, w * w / ((1 + w) * dt)]
 
 
+def impasse_lengths(shortest: float, failed: float) -> list[float]:
+    """The lengths of the steps a jump over an impasse tries, in the order tried
+    (TimeIntegrator.jump_over_impasse): 4, 16, ... 4^IMPASSE_PROBES times ``shortest`` (the
+    longest of the failed step, the step the error test last asked for and, where the steps
+    crept, motion.tolerance times the longest it asked for), then, where all of those fail,
+    4, 16, ... 4^IMPASSE_PROBES times ``failed`` (the step that failed, or was not tried)
+    while shorter than the first of them. The long ones first: a run whose jumps converge so
+    takes the steps it took before, and a short jump that converges may land before the seal,
+    where the steps creep to it again (the tight 31-node stop of tests/test_hard_cases.py hung
+    so for minutes with the short ones first). The short ones were added where every long one
+    failed: on the 20 N grease stop at t = 0.602 s, where 256 times the failed step (3.4 ms)
+    converges (docs/physics.md section 14, "The impasse at a sealing pocket")."""
+    long = [shortest * 4.0 ** k for k in range(1, IMPASSE_PROBES + 1)]
+    return long + [failed * 4.0 ** k for k in range(1, IMPASSE_PROBES + 1) if failed * 4.0 ** k < long[0]]
+
+
+def bdf_history(coefficients, levels) -> np.ndarray:
+    """c1 h_T^n + c2 h_T^{n-1} of Squeeze.history (``coefficients`` c0, c1[, c2] of
+    bdf_coefficients, ``levels`` oldest first), except in the cells sealed at the last level
+    (Level.sealed: their content frozen below the kink), which take -c0 h_T^n: their rate
+    c0 (h_T^{n+1} - h_T^n) is zero while they stay sealed, as a frozen content's is. BDF2's
+    difference through the seal is not: with h_T^{n+1} = h_T^n it leaves c2 (h_T^{n-1} - h_T^n)
+    > 0, a flow into the sealed cell that its frozen content cannot hold, and so destroys half
+    a step's outflow at every cell that seals (docs/physics.md section 14, "A sealed cell's
+    rate"). A cell sealed at the two last levels has BDF2's own rate, zero, either way."""
+    last = levels[-1]
+    history = sum(cj * lv.expected_gap for cj, lv in zip(coefficients[1:], levels[::-1]))
+    return np.where(last.sealed, -coefficients[0] * last.expected_gap, history)
+
+
 def step_error(scaled: np.ndarray, norm: str) -> float:
     """A step's error from its nodes' estimates, each in its own error weight (module
     docstring): their root mean square (``norm`` "rms", the weighted RMS norm of SUNDIALS)
@@ -267,6 +297,7 @@ class Level:
     speed: float
     state: object  # model/model.State
     expected_gap: np.ndarray  # h_T used by the squeeze history
+    sealed: np.ndarray  # the cells whose content is frozen (ControlVolumeMean.frozen): bdf_history
     model: Model  # the model of the step (its scene carries the speed)
     diagnostics: Diagnostics
     order: int = 0
@@ -446,7 +477,8 @@ def transferred(level: Level, model: Model) -> Level:
     delta = spline_along_x(state.delta, source, target)
     state = dataclasses.replace(state, delta=delta, film=film, reynolds=reynolds)
     rate = None if level.squeeze_rate is None else interpolate_field(level.squeeze_rate, source, target)
-    return dataclasses.replace(level, state=state, expected_gap=squeeze_content(model, film).value, model=model,
+    content = squeeze_content(model, film)
+    return dataclasses.replace(level, state=state, expected_gap=content.value, sealed=content.frozen(), model=model,
                                squeeze_rate=rate)
 
 
@@ -497,10 +529,11 @@ class TimeIntegrator:
         outside = (mesh.x < inside[0] - 1e-9 * mesh.dx) | (mesh.x > inside[-1] + 1e-9 * mesh.dx)
         return float(np.sum((total * mesh.nodal_area)[:, outside])) / self.scene.operating.force
 
-    def _gap(self, model: Model, film: np.ndarray) -> np.ndarray:
-        """The content the squeeze term differentiates in time: each cell's
-        (model/fluid_film.squeeze_content)."""
-        return squeeze_content(model, film).value
+    def _gap(self, model: Model, film: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(the content the squeeze term differentiates in time, each cell's
+        (model/fluid_film.squeeze_content); the cells where it is frozen, sealed)."""
+        content = squeeze_content(model, film)
+        return content.value, content.frozen()
 
     def start(self) -> Level:
         """The steady state at t = 0 (the motion's initial speed)."""
@@ -508,7 +541,7 @@ class TimeIntegrator:
         state, diag, _ = steady_solve(model)
         self.coupled_solves += 1
         transient = dataclasses.replace(model, hydrodynamic=bool(self.scene.effects.hydrodynamics))
-        return Level(0.0, self.history.initial_speed(), state, self._gap(transient, state.film), model, diag)
+        return Level(0.0, self.history.initial_speed(), state, *self._gap(transient, state.film), model, diag)
 
     def step(self, levels: list[Level], t_new: float, order: int, extrapolate: bool = True):
         """Coupled solve at t_new with BDF_order; (level, error/tolerance) or (None, reason).
@@ -519,7 +552,7 @@ class TimeIntegrator:
         dt = t_new - last.time
         previous = [last.time - levels[-2].time] if order == 2 else []
         c = bdf_coefficients([dt] + previous)
-        history = sum(cj * lv.expected_gap for cj, lv in zip(c[1:], levels[::-1]))
+        history = bdf_history(c, levels)
         speed = self.history.speed(t_new)
         scale = max(float(np.min(last.state.film)), self.floor) if self.contact is None else self.floor
         load = None
@@ -554,14 +587,15 @@ class TimeIntegrator:
         fraction = error_fraction([dt] + [lv.time - lv_prev.time for lv, lv_prev in zip(used[::-1], used[::-1][1:])])
         error = step_error(fraction * (state.film - predicted) / model.squeeze.error_weight(state.film),
                            self.scene.motion.error_norm)
-        gap = self._gap(model, state.film)
+        gap, sealed = self._gap(model, state.film)
         if state.reynolds is not None:
             state.reynolds.factor = None  # LU factors: not needed after the step, megabytes each
-        level = Level(t_new, speed, state, gap, model, diag, order, error, model.squeeze.rate(gap),
+        level = Level(t_new, speed, state, gap, sealed, model, diag, order, error, model.squeeze.rate(gap),
                       0.0 if load is None else load.velocity(state.z))
         return level, error
 
-    def jump_over_impasse(self, levels: list[Level], shortest: float, target: float, pocket: str) -> Level | None:
+    def jump_over_impasse(self, levels: list[Level], shortest: float, target: float, pocket: str,
+                          failed: float) -> Level | None:
         """The level after a jump over an impasse at a sealing pocket, None where there is no
         sealing pocket (``pocket`` empty, sealing_pocket) or no jump converges.
 
@@ -572,7 +606,9 @@ class TimeIntegrator:
         pocket's pressure must fall to its neighbours' at once, and the films with it. The
         integrator takes that jump as the model says: first-order steps of 4, 16, ...
         4^IMPASSE_PROBES times ``shortest`` (the failed step, or the longer step the error test
-        last asked for), up to the next breakpoint ``target``, each solve started from the last
+        last asked for), up to the next breakpoint ``target``, and where all of those fail,
+        4, 16, ... times ``failed`` (the step that failed, or was not tried) below the first of
+        them (impasse_lengths), each solve started from the last
         level (the slope of the short steps before it, carried over a step thousands of times
         longer, is no prediction: a light mass's ringing sent such starts metres away), the
         first whose solve converges accepted without the error test (a jump has no local error
@@ -581,17 +617,16 @@ class TimeIntegrator:
         A run that passes every step never comes here: its answers do not change."""
         if not pocket:
             return None
-        start = levels[-1].time
-        step = shortest
-        for _ in range(IMPASSE_PROBES):
-            step *= 4.0
-            t_new = min(start + step, target)
+        start, tried = levels[-1].time, set()
+        for length in impasse_lengths(shortest, failed):
+            t_new = min(start + length, target)  # past the breakpoint: the breakpoint, once
+            if t_new in tried:
+                continue
+            tried.add(t_new)
             level, outcome = self.step(levels, t_new, 1, extrapolate=False)
             if level is not None:
                 return dataclasses.replace(level, impasse=pocket)
             self.rejected += 1
-            if t_new == target:
-                break
         return None
 
     def run(self, progress: bool = False, report=None):
@@ -666,7 +701,7 @@ class TimeIntegrator:
                             if not creeping:
                                 pocket = sealing_pocket(stepping)
                             probe = max(t_new - t, asked or 0.0, self.tolerance * longest if creeping else 0.0)
-                            jump = self.jump_over_impasse(stepping, probe, target, pocket)
+                            jump = self.jump_over_impasse(stepping, probe, target, pocket, t_new - t)
                             if jump is not None:  # restart at first order from it, as after a breakpoint
                                 levels.append(jump)
                                 if stepping is not levels:
