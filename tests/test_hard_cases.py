@@ -32,7 +32,7 @@ BUDGET = 30  # s of wall clock per case; each measured at 0.5-17 s on the shared
 # jumps); their alarm still stops a run that hangs. The 20 N grease stop runs on its 2-D mesh
 # for 83 s (its case below)
 LONGER_BUDGET = {"fretting_stiff_grease": 60, "fretting_stiff_grease_51_nodes": 60, "fretting_1_Pa_s_20_N_51_nodes": 60,
-                 "fretting_10_Pa_s_20_N_51_nodes": 60, "grease_stop_20_N": 120}
+                 "fretting_10_Pa_s_20_N_51_nodes": 60, "grease_stop_20_N": 150}
 QUICK = {"mesh.ny": 1, "solver.max_iterations": 20}
 # a smooth elastic line contact on a fixed domain (tests/test_lubricated.py), at Moes' M = 13 and 23
 SOFT_FILM = {"effects.asperity_contact": False, "mesh.ny": 1, "mesh.nx": 401, "mesh.x_min": -2.5e-4, "mesh.x_max": 1e-4}
@@ -317,7 +317,8 @@ def test_hard_case_fails_cheaply_saying_where_and_why(case, outcomes):
     assert not np.any(np.isnan(ds["contact_resistance"].values))
     if "creep towards a sealing pocket" in where.group(3):  # the steps crept to a seal: where, and that jumps failed
         assert re.search(r"a pocket of the film is sealing at x = \S+ mm, y = \S+ mm \(h/sigma = ", notes), notes
-        assert "but no longer step (up to 4096 times) converged either" in notes, notes
+        assert ("but no longer step (up to 4096 times) converged either, nor a shorter one of 4, 16, ... times the "
+                "failed step") in notes, notes
         return
     # both solvers named, or the one Newton named as the only solver (mass, spring, grease)
     assert "one Newton" in where.group(3)

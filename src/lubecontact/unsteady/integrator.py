@@ -231,10 +231,10 @@ def step_error(scaled: np.ndarray, norm: str) -> float:
     """A step's error from its nodes' estimates, each in its own error weight (module
     docstring): their root mean square (``norm`` "rms", the weighted RMS norm of SUNDIALS)
     or their largest magnitude ("max", the maximum norm Hairer, Norsett & Wanner give beside
-    it, "Solving ODEs I", section II.4). The RMS of an error at a few nodes falls as one over the root of the node
-    count, so the same motion.tolerance is looser on a finer mesh where the error is a
-    node's own, as where a pocket of the film seals; the max norm is not (docs/physics.md
-    section 14, "The error norm")."""
+    it, "Solving ODEs I", section II.4). The RMS of an error at a few nodes falls as one over
+    the root of the node count, so the same motion.tolerance is looser on a finer mesh where
+    the error is a node's own, as where a pocket of the film seals; the max norm is not
+    (docs/physics.md section 14, "The error norm")."""
     if norm == "max":
         return float(np.max(np.abs(scaled)))
     return float(np.sqrt(np.mean(scaled ** 2)))
@@ -717,7 +717,8 @@ class TimeIntegrator:
                             if pocket:
                                 outcome += (f"; a pocket of the film is sealing at {pocket}: there the state must "
                                             "jump (docs/physics.md section 14, \"The impasse at a sealing pocket\"), but no "
-                                            f"longer step (up to {4.0 ** IMPASSE_PROBES:g} times) converged either; a "
+                                            f"longer step (up to {4.0 ** IMPASSE_PROBES:g} times) converged either, nor a "
+                                            "shorter one of 4, 16, ... times the failed step; a "
                                             "looser motion.tolerance may step over it")
                             verdict = "was not taken" if creeping else "did not converge"
                             failure = (f"time step at t = {t_new:.6g} s (dt = {t_new - t:.3g} s) {verdict} "
