@@ -18,7 +18,7 @@ from cfcheck import cf_findings
 import lubecontact as lc
 from lubecontact.cli.main import main
 from lubecontact.unsteady.events import dense_film, locate_events
-from lubecontact.unsteady.transient import impasse_jumps, times_within_jumps
+from lubecontact.unsteady.transient import ended_in_a_jump, impasse_jumps, times_within_jumps
 
 # film h(t) = H0 + A sin(omega t) on a few nodes; R = R0 exp(h / LENGTH), so R > R0 exp(h*/LENGTH)
 # exactly when sin(omega t) > s = (h* - H0) / A: the open intervals are known in closed form
@@ -269,3 +269,18 @@ def test_a_time_located_within_an_impasse_jump_is_said_to_be_uncertain_by_it():
     assert "event 1" not in note
     assert times_within_jumps(jumps, {"the reconnection": 1.5e-3}) == ""
     assert times_within_jumps([], {"the reconnection": 5e-3}) == ""
+
+
+def test_a_run_that_ends_in_a_jump_without_reconnecting_says_so():
+    """transient.ended_in_a_jump: where the last step jumped over an impasse and the contact
+    did not reconnect, the end is the jump's landing, not the path: the note says from when to
+    when; a run that reconnected, or whose last step is an ordinary one, says nothing."""
+    levels = [SimpleNamespace(time=t, impasse=impasse) for t, impasse in
+              ((0.0, ""), (0.6, ""), (4.1, "x = 0 mm"), (10.0, "x = 0.1 mm"))]
+    jumps = impasse_jumps(levels)
+    note = ended_in_a_jump(jumps, levels, math.inf)
+    assert "jumped over an impasse from t = 4.1 s to its end at 10 s" in note
+    assert ended_in_a_jump(jumps, levels, 3.4) == ""
+    ordinary = levels + [SimpleNamespace(time=12.0, impasse="")]
+    assert ended_in_a_jump(impasse_jumps(ordinary), ordinary, math.inf) == ""
+    assert ended_in_a_jump([], levels[:2], math.inf) == ""

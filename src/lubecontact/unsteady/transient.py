@@ -86,6 +86,20 @@ def times_within_jumps(jumps, located: dict[str, float]) -> str:
             "uncertainty): " + "; ".join(inside))
 
 
+def ended_in_a_jump(jumps, levels, reconnected: float) -> str:
+    """What a run says whose last step jumped over an impasse (``impasse_jumps``) and which did
+    not reconnect (``reconnected`` infinite), "" otherwise: its end is where that jump, a
+    first-order step accepted without the error test, landed, not the state's path, so "not
+    within the run" may be the jump's, not the contact's (the 20 N grease stop's whole run
+    ended so over a jump of 5.9 s, docs/DESIGN.md "Hard cases")."""
+    if not (jumps and jumps[-1][1] is levels[-1] and math.isinf(reconnected)):
+        return ""
+    before, level = jumps[-1]
+    return (f"reconnect_time: no reconnection within the run, whose last step jumped over an impasse from "
+            f"t = {before.time:.6g} s to its end at {level.time:.6g} s: where the state went within that step is "
+            "not known, so neither is whether the contact reconnected there")
+
+
 def tighter_reconnect_time(scene, history, rest: float, progress: bool) -> float:
     """reconnect_time of the same motion at motion.tolerance / ERROR_BAR_TIGHTENING (NaN if
     that run fails)."""
@@ -227,6 +241,10 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     inside = times_within_jumps(jumps, located)
     if inside:
         notes.append(inside)
+    if history.rest_from is not None:
+        unreached = ended_in_a_jump(jumps, levels, recon)
+        if unreached:
+            notes.append(unreached)
     peaks = None
     fraction = math.nan
     if history.period is not None:
