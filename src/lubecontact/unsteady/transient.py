@@ -241,10 +241,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     inside = times_within_jumps(jumps, located)
     if inside:
         notes.append(inside)
-    if history.rest_from is not None:
-        unreached = ended_in_a_jump(jumps, levels, recon)
-        if unreached:
-            notes.append(unreached)
+    unreached = ended_in_a_jump(jumps, levels, recon)  # "" without a rest too: recon is NaN there
+    if unreached:
+        notes.append(unreached)
     peaks = None
     fraction = math.nan
     if history.period is not None:
