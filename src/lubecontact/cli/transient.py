@@ -24,6 +24,9 @@ def summary(ds) -> str:
     if "reconnect_time_error" in ds:
         lines.append(f"{'reconnect_time_error':>22s} = {ds['reconnect_time_error'].item():.3g} s "
                      f"(time integration, from a run at motion.tolerance / 10)")
+    if "reconnect_time_mesh_error" in ds:
+        lines.append(f"{'reconnect_time_mesh_error':>22s} = {ds['reconnect_time_mesh_error'].item():+.3g} s "
+                     f"(the converged value minus this run's, from a run on a mesh twice as fine along x)")
     lines.append(f"{'converged':>22s} = {'yes' if ds['converged'].item() == 1 else 'NO'}")
     return "\n".join(lines)
 

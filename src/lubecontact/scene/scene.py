@@ -601,6 +601,11 @@ class Motion(_Section):
     error_bar: bool = _field(
         False, _Flag(), "run again at tolerance/10 and report reconnect_time's time-integration error (twice the cost)"
     )
+    mesh_error_bar: bool = _field(
+        False, _Flag(),
+        "run again on a mesh twice as fine along x (at rest: motion.rest_refinement doubled) and report "
+        "reconnect_time's mesh error (a second run; the finer mesh at rest costs about three times the first's)",
+    )
     error_norm: str = _field(
         "rms", _Choice(("rms", "max")),
         "how a step's node errors make its error: rms (their root mean square) | max (the largest, which does not "
@@ -635,7 +640,8 @@ class Motion(_Section):
 
     # keys added after scenes were written: left out at their defaults (to_dict), so no hash changes
     LATER_KEYS = ("mass", "spring_stiffness", "vibration", "vibration_acceleration", "vibration_frequency",
-                  "vibration_frequency_end", "vibration_seed", "shock_duration", "rest_refinement", "error_norm")
+                  "vibration_frequency_end", "vibration_seed", "shock_duration", "rest_refinement", "error_norm",
+                  "mesh_error_bar")
 
     def to_dict(self):
         """None for the default motion; ``error_bar`` and the keys added later (LATER_KEYS) left

@@ -52,6 +52,9 @@ SCALARS = {
     "longest_impasse_jump": ("s", "the longest such step (0: none): a time within it is uncertain by its length"),
     "reconnect_time_error": ("s", "estimated time-integration error of reconnect_time (motion.error_bar): "
                                   "from a second run at motion.tolerance / 10, Richardson in the tolerance"),
+    "reconnect_time_mesh_error": ("s", "estimated mesh error of reconnect_time (motion.mesh_error_bar): the "
+                                       "converged value minus this run's, from a second run on a mesh twice as fine "
+                                       "along x, first order in the node spacing"),
     "open_fraction": ("1", "oscillation: fraction of the oscillation time within events above the open resistance"),
     "relative_threshold": ("ohm", "relative event threshold: the reconnection factor x the resistance at rest"),
     "min_event_duration": ("s", "shortest time above a threshold that counts as an event"),

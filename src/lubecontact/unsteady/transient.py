@@ -100,18 +100,61 @@ def ended_in_a_jump(jumps, levels, reconnected: float) -> str:
             "not known, so neither is whether the contact reconnected there")
 
 
+# motion.mesh_error_bar: the second run's mesh is twice as fine where a reconnect time's mesh
+# error is made (finer_mesh_scene), and the error of the first run is taken as first order in
+# the node spacing, e = (t(dx/2) - t(dx)) 2^p / (2^p - 1) with p = 1: the lowest order measured
+# on the Table 1 stop (1.0 to 1.7 over the mesh at rest refined 1 to 16 times, line and 51 x 51,
+# docs/physics.md section 14, "Error bar of a reconnect time"), so the estimate errs long where
+# the convergence is faster.
+MESH_ERROR_ORDER = 1.0
+
+
 def tighter_reconnect_time(scene, history, rest: float, progress: bool) -> float:
     """reconnect_time of the same motion at motion.tolerance / ERROR_BAR_TIGHTENING (NaN if
     that run fails)."""
     motion = dataclasses.replace(scene.motion, tolerance=scene.motion.tolerance / ERROR_BAR_TIGHTENING)
-    tight_scene = dataclasses.replace(scene, motion=motion)
-    levels, failure = TimeIntegrator(tight_scene, history).run(progress)
+    return second_reconnect_time(dataclasses.replace(scene, motion=motion), history, progress, rest)
+
+
+def finer_mesh_scene(scene):
+    """(``scene`` with the mesh that sets a reconnect time's mesh error twice as fine along x,
+    that mesh in words): the mesh at rest (motion.rest_refinement doubled) on the automatic
+    domain, the whole mesh (its mesh.nx - 1 cells doubled) on an explicit one, which keeps its
+    mesh throughout (TimeIntegrator.rest_domain). The rows stay: on the Table 1 stop 21, 51
+    and 101 rows reconnect within 1 % of each other (docs/physics.md section 14)."""
+    if scene.mesh.x_min is None:
+        refinement = 2 * scene.motion.rest_refinement
+        motion = dataclasses.replace(scene.motion, rest_refinement=refinement)
+        return dataclasses.replace(scene, motion=motion), f"the mesh at rest twice as fine (motion.rest_refinement = {refinement})"
+    nx = 2 * scene.mesh.nx - 1
+    return dataclasses.replace(scene, mesh=dataclasses.replace(scene.mesh, nx=nx)), f"{nx} nodes along x (mesh.nx)"
+
+
+def second_reconnect_time(scene, history, progress: bool, rest: float | None = None) -> float:
+    """reconnect_time of ``scene`` along ``history`` (NaN if the run fails), to ``rest`` times
+    motion.reconnect_factor, or to the run's own resistance at rest where ``rest`` is None
+    (a finer mesh's, whose resting resistance is its own). Without a bar (``progress``) it
+    reports each decade of simulated time on stderr, as the first run does."""
+    integrator = TimeIntegrator(scene, history)
+    levels, failure = integrator.run(progress, report=None if progress else _to_stderr)
     if failure:
         return math.nan
+    if rest is None:
+        rest = _rest_resistance(integrator)
     resistance = [instant(lv.model, lv.state)["contact_resistance"] for lv in levels]
     times = [lv.time for lv in levels]
     return reconnect_time(times, resistance, history.rest_from, scene.motion.reconnect_factor * rest,
                           dense_resistance(levels))
+
+
+def mesh_error(value: float, finer: float | None) -> float:
+    """The converged reconnect time minus ``value`` (s), estimated from ``finer`` (the run on
+    the mesh twice as fine, finer_mesh_scene) at MESH_ERROR_ORDER: positive where the finer
+    mesh reconnects later; NaN where either is not finite."""
+    if finer is None or not (math.isfinite(value) and math.isfinite(finer)):
+        return math.nan
+    gain = 2.0**MESH_ERROR_ORDER
+    return (finer - value) * gain / (gain - 1.0)
 
 
 def integration_error(value: float, tighter: float | None) -> float:
@@ -193,9 +236,16 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         integrator = TimeIntegrator(scene, history)
         levels, failure = integrator.run(progress, report=None if progress else _to_stderr)
         rest = _rest_resistance(integrator)
-        tight = None
-        if scene.motion.error_bar and history.rest_from is not None and not failure:
-            tight = tighter_reconnect_time(scene, history, rest, progress)
+        tight = finer = None
+        if history.rest_from is not None and not failure:
+            if scene.motion.error_bar:
+                _to_stderr(f"error bar: a second run at motion.tolerance = "
+                           f"{scene.motion.tolerance / ERROR_BAR_TIGHTENING:g}")
+                tight = tighter_reconnect_time(scene, history, rest, progress)
+            if scene.motion.mesh_error_bar:
+                finer_scene, finer_mesh = finer_mesh_scene(scene)
+                _to_stderr(f"mesh error bar: a second run on {finer_mesh}")
+                finer = second_reconnect_time(finer_scene, history, progress)
     threshold = open_resistance(scene)
     series_t = np.array([lv.time for lv in levels])
     notes = []
@@ -229,6 +279,11 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     if tight is not None:
         notes.append(f"reconnect_time error bar from a second run at motion.tolerance = "
                      f"{scene.motion.tolerance / ERROR_BAR_TIGHTENING:g}: {tight!r} s there")
+    if scene.motion.mesh_error_bar:
+        scalars["reconnect_time_mesh_error"] = mesh_error(recon, finer)
+    if finer is not None:
+        there = "it did not converge, so no mesh error is given" if math.isnan(finer) else f"{finer!r} s there"
+        notes.append(f"reconnect_time mesh error from a second run on {finer_mesh}: {there}")
     # discontinuity events above the open resistance and above reconnect_factor x rest: the
     # reconnected state of reconnect_time is the end of a relative event (docs/DESIGN.md "Time")
     min_duration = scene.interface.min_event_duration
