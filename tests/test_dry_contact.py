@@ -100,3 +100,33 @@ def test_cli_bad_input_exits_2_and_writes_nothing(tmp_path, capsys):
     assert code == 2
     assert not out.exists()
     assert "roughness.sigma" in capsys.readouterr().err
+
+
+def test_a_cylinder_crowned_at_its_own_radius_touches_as_a_sphere_hertz_circle():
+    """geometry.crown_radius = R: the gap R - sqrt(R^2 - x^2) + R - sqrt(R^2 - y^2) is a
+    sphere's, whose contact with the flat is Hertz's circle (Johnson 1985, section 4.2):
+    a = (3 F R / 4 E*)^(1/3) = 116.4 um and p0 = 3 F / (2 pi a^2) = 176.2 MPa on Table 1 (E* =
+    23.78 GPa). Nearly smooth elastic asperities carry it, as in the line test above; the
+    radius from the pressure's second moment (Hertz: <x^2> = a^2/5), the same along x and y."""
+    scene = dry(**{
+        "geometry.crown_radius": 0.01, "roughness.sigma": 5e-9, "roughness.asperity_density": 1e11,
+        "effects.plasticity": False, "mesh.nx": 61, "mesh.ny": 121, "mesh.x_min": -2.5e-4, "mesh.x_max": 2.5e-4,
+        "solver.tolerance": 1e-8,
+    })
+    ds = lc.solve(scene, fields=True)
+    assert ds["converged"].item() == 1
+    p = ds["contact_pressure"].values
+    x, y = np.meshgrid(ds["x"].values, ds["y"].values)
+    load = p.sum()
+    a_x, a_y = np.sqrt(5.0 * (p * x**2).sum() / load), np.sqrt(5.0 * (p * y**2).sum() / load)
+    a = (3.0 * 5.0 * 0.01 / (4.0 * 23.78e9)) ** (1.0 / 3.0)
+    assert a_x == pytest.approx(a, rel=0.03) and a_y == pytest.approx(a_x, rel=1e-3)
+    assert p.max() == pytest.approx(3.0 * 5.0 / (2.0 * np.pi * a**2), rel=0.03)
+
+
+def test_a_crown_is_refused_on_a_line_contact_and_inside_the_cylinder():
+    with pytest.raises(lc.SceneError, match="no axis to crown"):
+        dry(**{"geometry.crown_radius": 0.05, "mesh.ny": 1})
+    with pytest.raises(lc.SceneError, match="crown's circle must span"):
+        dry(**{"geometry.crown_radius": 4e-4})
+    assert dry().hash == dry(**{"geometry.crown_radius": "none"}).hash  # a straight cylinder keeps its hash

@@ -56,6 +56,18 @@ class AppliedLoad(Protocol):
         """(F, dF/dz) at cylinder position z (m): N and N/m."""
 
 
+def undeformed_gap(geometry, mesh: Mesh) -> np.ndarray:
+    """h_o (ny, nx), m: the cylinder's gap above the flat, R - sqrt(R^2 - x^2) (Eq. 4), plus
+    on a crowned cylinder its crown R_c - sqrt(R_c^2 - y^2) along the axis
+    (geometry.crown_radius; docs/physics.md section 11, item 8)."""
+    radius = geometry.radius
+    gap = np.broadcast_to(radius - np.sqrt(radius**2 - mesh.x**2), mesh.shape).copy()
+    crown = geometry.crown_radius
+    if crown is not None:
+        gap += (crown - np.sqrt(crown**2 - mesh.y**2))[:, None]
+    return gap
+
+
 @dataclass
 class Model:
     """The sub-models a scene calls for, built once (disabled effects are None / False)."""
@@ -75,9 +87,7 @@ class Model:
         rough-contact tables ``contact`` of the same scene when given."""
         effects = scene.effects
         mesh = build_mesh(scene) if mesh is None else mesh
-        radius = scene.geometry.radius
-        gap_x = radius - np.sqrt(radius**2 - mesh.x**2)  # Eq. (4)
-        undeformed = np.broadcast_to(gap_x, mesh.shape).copy()
+        undeformed = undeformed_gap(scene.geometry, mesh)
         if not effects.asperity_contact:
             contact = None
         elif contact is None:

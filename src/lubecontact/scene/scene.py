@@ -321,6 +321,15 @@ class _Section:
 class Geometry(_Section):
     radius: float = _field(0.01, _positive("m"), "cylinder radius R")
     length: float = _field(0.001, _positive("m"), "cylinder length along its axis (Table 1 'Width')")
+    crown_radius: float | None = _field(
+        None, _NotGivenOr(_positive("m")),
+        "crown radius R_c along the axis: the gap grows by R_c - sqrt(R_c^2 - y^2) towards the ends (none: a "
+        "straight cylinder, as the paper's; docs/physics.md section 11)",
+    )
+
+    def to_dict(self):
+        """A straight cylinder's crown left out, so scenes written before the key keep their hash."""
+        return {k: v for k, v in super().to_dict().items() if v is not None}
 
 
 @dataclass(frozen=True)
@@ -1083,6 +1092,14 @@ def _cross_problems(s: dict) -> list[str]:
             f"roughness.sigma = {roughness.sigma!r}: too large against the cylinder; allowed: "
             f"<= geometry.radius/100 = {geometry.radius / 100:g} m"
         )
+    if geometry is not None and geometry.crown_radius is not None:
+        if geometry.crown_radius <= geometry.length / 2:
+            problems.append(f"geometry.crown_radius = {geometry.crown_radius!r}: the crown's circle must span the "
+                            f"cylinder; allowed: > geometry.length/2 = {geometry.length / 2:g} m")
+        mesh = s.get("mesh")
+        if mesh is not None and mesh.ny == 1:
+            problems.append("geometry.crown_radius with mesh.ny = 1: a line contact has one row standing for the "
+                            "whole length, with no axis to crown; allowed: mesh.ny > 1, or no crown_radius")
     if roughness is not None and roughness.height_std == "mccool":
         eta_r = roughness.asperity_density * roughness.asperity_radius
         variance = roughness.sigma**2 - MCCOOL_VARIANCE_CONSTANT / eta_r**2
