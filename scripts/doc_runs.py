@@ -57,8 +57,6 @@ RECONNECT = {
                    {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": 101, "mesh.ny": 101}),
     "table1_rest4": ("0.1 Pa s oil (Table 1), the mesh at rest 4 times finer along x", "table1.yaml",
                      {**TABLE1_STOP, "motion.duration": OIL, "motion.rest_refinement": 4}),
-    "table1_mesh_error": ("0.1 Pa s oil (Table 1), with its mesh error bar", "table1.yaml",
-                          {**TABLE1_STOP, "motion.duration": OIL, "motion.mesh_error_bar": True}),
     "vg100": ("ISO VG 100 mineral oil, 0.087 Pa s (`stop_hydrocarbon_oil.yaml`)", "stop_hydrocarbon_oil.yaml", {"motion.duration": OIL}),
     "grease": ("grease-like, 10 Pa s (`stop_grease.yaml`)", "stop_grease.yaml", {"motion.duration": GREASE}),
     "grease_1N": ("grease-like, 10 Pa s, F = 1 N", "stop_grease.yaml", {"motion.duration": GREASE, "operating.force": 1.0}),
@@ -72,6 +70,11 @@ RECONNECT = {
 # the Table 1 oil, the ISO VG 100 oil and the grease again, with the flow below h/sigma = 0.5
 # at PERCOLATION_EXPONENT: how much each reconnect time rests on that law
 PERCOLATION_ROWS = ("table1", "vg100", "grease")
+# the same three with their error bars (motion.error_bar and motion.mesh_error_bar): the
+# reconnect table's last column; each such run is the row's run again, plus its second runs
+RECONNECT |= {f"{name}_bars": (f"{RECONNECT[name][0]}, with its error bars", RECONNECT[name][1],
+                               {**RECONNECT[name][2], "motion.error_bar": True, "motion.mesh_error_bar": True})
+              for name in PERCOLATION_ROWS}
 RECONNECT |= {f"{name}_percolation": (f"{RECONNECT[name][0]}, flow below h/σ = 0.5 with exponent {PERCOLATION_EXPONENT:g}",
                                       RECONNECT[name][1],
                                       {**RECONNECT[name][2], "roughness.percolation_exponent": PERCOLATION_EXPONENT})
@@ -106,6 +109,7 @@ def stop(scene_file: str, overrides: dict) -> dict:
             "stop_film": closed_form_stop_film(scene, film_at_stop(ds)),
             "open": bool((ds["contact_resistance"].values[at_rest] > float(ds["open_resistance"])).all()),
             "mesh_error": float(ds["reconnect_time_mesh_error"]) if "reconnect_time_mesh_error" in ds else None,
+            "time_error": float(ds["reconnect_time_error"]) if "reconnect_time_error" in ds else None,
             "steps": int(ds["steps"]), "rejected": int(ds["rejected_steps"]),
             "solves": int(ds["coupled_solves"]), "cpu": cpu}
 
@@ -168,22 +172,29 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
     when, runs = done["when"], done["runs"]
     lines = {n: runs[f"line{n}"] for n in LINE_NODES}
 
-    rows = [f"| {label} | {num(runs[name]['film'] * 1e6)} µm | {seconds(runs[name]['reconnect'])} | "
+    def bars(name):
+        """The row's error bars (its _bars run), '' for a row without."""
+        barred = runs.get(f"{name}_bars")
+        if barred is None:
+            return ""
+        return f"+{seconds(barred['mesh_error'])} (mesh), ±{seconds(barred['time_error'])} (time)"
+
+    rows = [f"| {label} | {num(runs[name]['film'] * 1e6)} µm | {seconds(runs[name]['reconnect'])} | {bars(name)} | "
             f"{runs[name]['steps']} ({runs[name]['rejected']}) |" for name, (label, _, _) in RECONNECT.items()
-            if name != "table1_mesh_error"]  # the same run as table1's, told below with its error bar
+            if not name.endswith("_bars")]  # a _bars run is its row's run again: its bars are the row's column
     r = {name: run["reconnect"] for name, run in runs.items()}
     law = {name: r[f"{name}_percolation"] / r[name] - 1.0 for name in PERCOLATION_ROWS}  # relative changes
     tight = {name: r[f"{name}_tight"] / r[name] - 1.0 for name in PERCOLATION_ROWS}  # half the tolerance
     mesh_change = r["table1_101"] / r["table1"] - 1.0
-    mesh_error = runs["table1_mesh_error"]["mesh_error"]
+    cost_of_bars = {name: runs[f"{name}_bars"]["cpu"] / runs[name]["cpu"] for name in PERCOLATION_ROWS}
     more_or_less = "more" if abs(law["table1"]) > abs(mesh_change) else "less"
     reconnect = "\n".join([
         "Measured (`scripts/doc_numbers.py --runs`, 51 × 51 nodes unless noted; stop from 1 m/s over 1 ms, "
         "reconnected at 2 × the resting resistance; steps of the whole run, "
         f"{OIL:g} s after the stop for the oils, {GREASE:g} s for the greases):",
         "",
-        "| contact (Table 1 unless noted) | film at 1 m/s | reconnect_time | steps (rejected) |",
-        "|---|---|---|---|",
+        "| contact (Table 1 unless noted) | film at 1 m/s | reconnect_time | error bars | steps (rejected) |",
+        "|---|---|---|---|---|",
         *rows,
         "",
         f"Ten times the viscosity waits {num(r['grease_100'] / r['grease'])} times longer (10 → 100 Pa s); "
@@ -192,12 +203,16 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
         f"{later(r['table1_101'], r['table1'])} than at 51 × 51 ({percent(mesh_change)}), with only its mesh at rest "
         f"refined four times {percent(r['table1_rest4'] / r['table1'] - 1.0)} (`motion.rest_refinement`: the film "
         f"drains at rest, docs/physics.md section 14, \"The mesh at rest\"; "
-        f"{num(runs['table1_rest4']['cpu'] / runs['table1']['cpu'])} times the CPU time). "
-        f"With `motion.mesh_error_bar` the Table 1 stop estimates its own mesh error from a second run with the "
-        f"mesh at rest twice as fine: +{seconds(mesh_error)}, so {seconds(r['table1'] + mesh_error)} with it, "
+        f"{num(runs['table1_rest4']['cpu'] / runs['table1']['cpu'])} times the CPU time).",
+        "",
+        "The error bars are the run's own estimates (\"Error bars\" under \"Time\" above): `motion.mesh_error_bar`'s, "
+        "the converged value minus the run's, from a second run with the mesh at rest twice as fine, and "
+        "`motion.error_bar`'s time-integration error, from a second run at a tenth of the tolerance. "
+        f"The Table 1 stop is then {seconds(r['table1'] + runs['table1_bars']['mesh_error'])} with its mesh error, "
         f"against {seconds(r['table1_rest4'])} with the mesh at rest four times finer (itself short by its own "
-        f"mesh error: docs/physics.md section 14, \"Error bar of a reconnect time\"), at "
-        f"{num(runs['table1_mesh_error']['cpu'] / runs['table1']['cpu'])} times the CPU time of the run alone.",
+        "mesh error: docs/physics.md section 14, \"Error bar of a reconnect time\"). A run with both bars took "
+        f"{num(cost_of_bars['table1'])} times the CPU time of the run alone for the Table 1 oil, "
+        f"{num(cost_of_bars['vg100'])} for the ISO VG 100 oil and {num(cost_of_bars['grease'])} for the grease.",
         "",
         f"The pressure flow below h/σ = 0.5 is the model's own interpolation to the percolation threshold "
         f"(docs/physics.md section 15). With 2-D percolation's conductivity exponent {PERCOLATION_EXPONENT:g} "
