@@ -40,11 +40,12 @@ SMOOTH_ENDS = ("without asperity contact a film that closes at any node ends the
 # the cause is elsewhere. Measured on Table 1 crowned at 0.1 m, 0.01 m/s: on the automatic 51 x 51
 # domain (sized by sigma, cells of 31 um) the first force balance closed the film; on cells of
 # 9 um the one Newton stalled half-way through its load continuation (tests/test_hard_cases.py,
-# smooth_crowned_default_mesh; docs/physics.md section 20).
+# smooth_crowned_default_mesh; docs/DESIGN.md "Hard cases").
 SMOOTH_CROWNED = ("without asperity contact a film that closes at any node ends the solve; this cylinder is "
                   "crowned, its ends lifted, so the film failed within its contact: thinner than the mesh's cells "
-                  "resolve (the automatic domain is sized by the roughness, section 17 of docs/physics.md), or "
-                  "beyond the solver at this speed: turn on effects.asperity_contact, or solve a line contact "
+                  "resolve (the automatic domain is sized by the roughness even without asperity contact: give "
+                  "mesh.x_min and mesh.x_max a few Hertz widths apart), or beyond the solver at this speed "
+                  "(docs/DESIGN.md, \"Hard cases\"): turn on effects.asperity_contact, or solve a line contact "
                   "(mesh.ny: 1, without the crown)")
 
 
