@@ -65,6 +65,25 @@ def test_finite_cylinder_is_symmetric_in_y():
         np.testing.assert_allclose(field, field[::-1, :], rtol=1e-7, atol=1e-9 * np.abs(field).max())
 
 
+def test_a_crowned_cylinder_carries_a_smooth_film_where_its_straight_twin_closes_at_its_ends():
+    """Smooth surfaces (no asperity contact), 51 x 51 on x in [-0.6, 0.2] mm, 0.1 m/s. The
+    straight cylinder's ends, where the fluid pressure is ambient, sink less than its middle
+    and its film closes there (model/solve.SMOOTH_ENDS). Crowned at 0.1 m its ends stand
+    (0.5 mm)^2 / 0.2 m = 1.25 um off the flat, far above the film: it carries the whole load
+    on the fluid, its thinnest film within the contact (the side lobes of an elliptical EHL
+    film, 65 nm at y = -0.14 mm), the film at the ends ten times thicker."""
+    smooth = {"effects.asperity_contact": False, "operating.speed": 0.1, "mesh.x_min": -6e-4, "mesh.x_max": 2e-4}
+    straight = lc.solve(lc.load_scene(TABLE1, smooth))
+    assert straight["converged"].item() == 0 and "thinnest at its ends" in straight.attrs["notes"]
+    crowned = lc.solve(lc.load_scene(TABLE1, {**smooth, "geometry.crown_radius": 0.1}), fields=True)
+    assert crowned["converged"].item() == 1
+    assert crowned["fluid_force"].item() == pytest.approx(5.0, rel=1e-6)
+    h = crowned["film_thickness"].values
+    row, _ = np.unravel_index(np.argmin(h), h.shape)
+    assert h.min() > 10e-9 and 0 < row < h.shape[0] - 1
+    assert h[[0, -1], :].min() > 5.0 * h.min()
+
+
 def test_cold_start_equals_continuation():
     s = scene(**{"mesh.nx": 31, "mesh.ny": 11})
     speeds = [1e-3, 1e-2, 1e-1, 1.0]
