@@ -12,6 +12,7 @@ import pytest
 
 import lubecontact as lc
 from lubecontact.cli.main import main
+from lubecontact.cli.transient import explained
 from lubecontact.unsteady.transient import finer_mesh_scene
 
 TABLE1 = "config/scenes/table1.yaml"
@@ -101,3 +102,13 @@ def test_no_mesh_error_bar_without_a_reconnection():
                                              "motion.duration": 0.01, "motion.tolerance": 1e-2,
                                              "motion.mesh_error_bar": True}), progress=False)
     assert math.isnan(ds["reconnect_time_mesh_error"].item())
+
+
+def test_a_mesh_error_bar_whose_second_run_failed_is_explained_not_a_bare_nan():
+    scene = lc.load_scene(TABLE1, {**STOP, "motion.tolerance": 1e-2, "motion.mesh_error_bar": True})
+    ds = lc.transient(scene, progress=False)
+    assert math.isfinite(ds["reconnect_time_mesh_error"].item())
+    assert not any("reconnect_time_mesh_error" in line for line in explained(ds, scene))
+    ds["reconnect_time_mesh_error"] = ds["reconnect_time_mesh_error"] * math.nan  # as when the finer run fails
+    assert any(line.startswith("  reconnect_time_mesh_error = nan: the second run on a mesh twice as fine")
+               for line in explained(ds, scene))

@@ -43,6 +43,11 @@ def explained(ds, scene) -> list[str]:
     elif math.isinf(reconnect):
         lines.append(f"  reconnect_time = inf: not reconnected within motion.duration = {motion.duration:g} s "
                      f"(R stayed above {motion.reconnect_factor:g} x rest_resistance)")
+    for name, second in (("reconnect_time_error", "at motion.tolerance / 10"),
+                         ("reconnect_time_mesh_error", "on a mesh twice as fine along x")):
+        if name in ds and math.isnan(ds[name].item()) and math.isfinite(reconnect):
+            lines.append(f"  {name} = nan: the second run {second} did not converge or did not reconnect within "
+                         f"motion.duration (its outcome is in the file's notes)")
     valid = ds["valid"].values == 1
     lines.append(f"{'valid':>22s} = " + ("yes at every instant (every sub-model within its range)" if valid.all() else
                                          f"NO at {int((~valid).sum())} of {valid.size} instants: left a sub-model's ground"))
