@@ -11,12 +11,17 @@ import time
 import lubecontact as lc
 
 
-def run(nx: int, ny: int, tolerance: float | None, duration: float = 0.1) -> None:
+def stop_scene(nx: int, ny: int, tolerance: float | None, duration: float = 0.1) -> dict:
+    """The overrides of Table 1 for its stop on nx x ny nodes (bench/solver_core.py uses it too)."""
     overrides = {"mesh.nx": nx, "mesh.ny": ny, "operating.speed": 1.0,
                  "motion.kind": "stop", "motion.ramp": 1e-3, "motion.duration": duration}
     if tolerance is not None:
         overrides["motion.tolerance"] = tolerance
-    scene = lc.load_scene("config/scenes/table1.yaml", overrides)
+    return overrides
+
+
+def run(nx: int, ny: int, tolerance: float | None, duration: float = 0.1) -> None:
+    scene = lc.load_scene("config/scenes/table1.yaml", stop_scene(nx, ny, tolerance, duration))
     start, cpu = time.perf_counter(), time.process_time()
     ds = lc.transient(scene, progress=False)
     wall, cpu = time.perf_counter() - start, time.process_time() - cpu
