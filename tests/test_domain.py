@@ -80,3 +80,22 @@ def test_the_mesh_at_rest_is_symmetric_and_finer_within_the_mesh_in_motion():
             assert on_rest.max() < 1e-9 * moving.dx
 
 
+
+
+def test_a_smooth_film_s_domain_is_sized_by_the_load_not_the_roughness():
+    """Without asperity contact, on deforming bodies, the automatic length scale is the Hertz
+    width 2 b alone, b = sqrt(4 F R / (pi L E*)) (Johnson 4.43; Table 1: E* = 23.78 GPa),
+    whatever sigma (with it, or on rigid bodies, sqrt(20 R sigma) = 0.32 mm, longer); a crowned
+    cylinder's the wider Hertz ellipse's 2 a_x (75.5 um on Table 1 crowned at 0.1 m, against
+    b = 51.7 um)."""
+    smooth = {"effects.asperity_contact": False}
+    b = np.sqrt(4.0 * 5.0 * 0.01 / (np.pi * 1e-3 * 23.78e9))
+    for sigma in (0.5e-6, 2e-6):
+        scene = lc.load_scene(TABLE1, {**smooth, "roughness.sigma": sigma})
+        assert auto_length_scale(scene) == pytest.approx(2.0 * b, rel=1e-3)
+    rough = np.sqrt(20.0 * 0.01 * 0.5e-6)
+    assert auto_length_scale(lc.load_scene(TABLE1)) == pytest.approx(rough, rel=1e-12)
+    rigid = lc.load_scene(TABLE1, {**smooth, "effects.elastic_deformation": False})
+    assert auto_length_scale(rigid) == pytest.approx(rough, rel=1e-12)  # no Hertz width without deformation
+    crowned = lc.load_scene(TABLE1, {**smooth, "geometry.crown_radius": 0.1})
+    assert auto_length_scale(crowned) == pytest.approx(2.0 * 75.47e-6, rel=1e-3)

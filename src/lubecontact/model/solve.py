@@ -32,21 +32,20 @@ from lubecontact.numerics.blas_threads import one_blas_thread
 # without asperity contact, 51 x 51 (tests/test_hard_cases.py, smooth_default_mesh): the film
 # at the ends is 306 / 105 / 20 nm at 1 / 0.5 / 0.3 m/s against 508 / 279 / 171 nm on the line
 # contact, and the solve fails from 0.1 m/s down.
-SMOOTH_ENDS = ("without asperity contact a film that closes at any node ends the solve, and on a 2-D mesh an "
-               "uncrowned cylinder's film is thinnest at its ends (y = +-L/2, where the fluid pressure is "
-               "ambient), so it closes there first as the speed falls: turn on effects.asperity_contact to "
-               "let the asperities carry the ends, or solve a line contact (mesh.ny: 1)")
+SMOOTH_CLOSED = "without asperity contact a film that closes at any node ends the solve"
+SMOOTH_ENDS = (f"{SMOOTH_CLOSED}, and on a 2-D mesh an uncrowned cylinder's film is thinnest at its ends "
+               "(y = +-L/2, where the fluid pressure is ambient), so it closes there first as the speed falls: turn on "
+               "effects.asperity_contact to let the asperities carry the ends, or solve a line contact (mesh.ny: 1)")
 # A crowned cylinder (geometry.crown_radius) lifts its ends: where its smooth film still fails
-# the cause is elsewhere. Measured on Table 1 crowned at 0.1 m, 0.01 m/s: on the automatic 51 x 51
-# domain (sized by sigma, cells of 31 um) the first force balance closed the film; on cells of
-# 9 um the one Newton stalled half-way through its load continuation (tests/test_hard_cases.py,
+# the cause is elsewhere. Measured on Table 1 crowned at 0.1 m on the automatic 51 x 51 domain
+# (sized by the Hertz ellipse, cells of 15 um): cold solves converge down to 0.02 m/s (13 s at
+# 0.03, 103 s at 0.02), and at 0.01 m/s the nested force balance closes the film and one Newton
+# from a cold start stalls at 0.4 of the load in its continuation, 19 s (tests/test_hard_cases.py,
 # smooth_crowned_default_mesh; docs/DESIGN.md "Hard cases").
-SMOOTH_CROWNED = ("without asperity contact a film that closes at any node ends the solve; this cylinder is "
-                  "crowned, its ends lifted, so the film failed within its contact: thinner than the mesh's cells "
-                  "resolve (the automatic domain is sized by the roughness even without asperity contact: give "
-                  "mesh.x_min and mesh.x_max a few Hertz widths apart), or beyond the solver at this speed "
-                  "(docs/DESIGN.md, \"Hard cases\"): turn on effects.asperity_contact, or solve a line contact "
-                  "(mesh.ny: 1, without the crown)")
+SMOOTH_CROWNED = (f"{SMOOTH_CLOSED}; this cylinder is crowned, its ends lifted, so the film failed within its "
+                  "contact: thinner than the mesh's cells resolve, or beyond the solver at this speed "
+                  "(docs/DESIGN.md, \"Hard cases\"): refine the mesh, turn on effects.asperity_contact, or solve a "
+                  "line contact (mesh.ny: 1, without the crown)")
 
 
 def solve(scene, fields: bool = False, initial: WarmStart | None = None, return_state: bool = False):

@@ -7,9 +7,11 @@ boundary nodes included; x is the sliding direction (inlet at x_min), y the cyli
 times the cylinder length L.
 
 Automatic domain (``x_min``/``x_max`` = auto): the length scale
-``s = max(2 b_H, sqrt(2 R * 10 sigma))`` covers the Hertz width b_H (Johnson, E*) and the
+``s = max(2 b_H, sqrt(2 R * 10 sigma))`` covers the Hertz width b_H (Johnson, E*; a crowned
+cylinder's ellipse where it is wider, film_estimates.contact_half_width) and the
 inlet/outlet zone where the undeformed gap (Eq. 4) is below ten roughness heights, the
-film a fluid can build. The domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the
+film a fluid can build; without asperity contact, on deforming bodies, s = 2 b_H (the
+smooth film is as thin as the load and the speed make it, whatever the roughness). The domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the
 fluid pressure builds, than downstream, where it cavitates.
 
 The inlet follows the film (docs/physics.md section 17): a film h fed from an inlet that ends at
@@ -32,7 +34,7 @@ from functools import cached_property
 
 import numpy as np
 
-from lubecontact.physics.film_estimates import hertz_half_width, martin_film
+from lubecontact.physics.film_estimates import contact_half_width, martin_film
 
 UPSTREAM_LENGTHS = 3.5
 DOWNSTREAM_LENGTHS = 1.5
@@ -43,15 +45,27 @@ MAX_DOMAIN_RADII = 0.9  # the automatic inlet never reaches beyond this fraction
 
 def contact_width_estimate(scene) -> float:
     """Width in x over which solid contact is expected: the larger of the Hertz width 2 b_H
-    and the width where the undeformed gap x^2/2R stays below 3 sigma (rough contact
-    spreads the load beyond Hertz)."""
-    r, sigma = scene.geometry.radius, scene.roughness.sigma
-    return 2.0 * max(hertz_half_width(scene), float(np.sqrt(6.0 * r * sigma)))
+    (a crowned cylinder's: film_estimates.contact_half_width) and the width where the
+    undeformed gap x^2/2R stays below 3 sigma (rough contact spreads the load beyond Hertz)."""
+    return 2.0 * max(contact_half_width(scene), _rough_half_width(scene, 3.0))
 
 
 def auto_length_scale(scene) -> float:
-    r, sigma = scene.geometry.radius, scene.roughness.sigma
-    return max(2.0 * hertz_half_width(scene), float(np.sqrt(2.0 * r * 10.0 * sigma)))
+    """The automatic domain's length scale s (module docstring): the larger of the Hertz
+    width and the half-width where the undeformed gap stays below ten roughness heights.
+    Without asperity contact but with elastic deformation, the Hertz width alone: the smooth
+    film is as thin as the load and the speed make it, not the roughness (a rigid smooth
+    cylinder keeps the roughness scale: its Hertz width has no meaning, and the film's own
+    scale changes with the speed, where the spacing of a sweep's cases must not)."""
+    smooth_elastic = not scene.effects.asperity_contact and scene.effects.elastic_deformation
+    rough = 0.0 if smooth_elastic else _rough_half_width(scene, 10.0)
+    return max(2.0 * contact_half_width(scene), rough)
+
+
+def _rough_half_width(scene, heights: float) -> float:
+    """Half-width where the undeformed gap x^2/2R (Eq. 4) stays below ``heights`` roughness
+    heights, sqrt(2 R heights sigma)."""
+    return float(np.sqrt(2.0 * scene.geometry.radius * heights * scene.roughness.sigma))
 
 
 def film_inlet_length(scene) -> float:

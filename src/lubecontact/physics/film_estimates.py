@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.optimize import brentq
+from scipy.special import ellipe, ellipk
 
 from lubecontact.physics.materials import effective_modulus
 
@@ -96,3 +98,38 @@ def hertz_half_width(scene) -> float:
     """Hertz line-contact half-width b = sqrt(4 w' R / (pi E*)), w' = F/L (Johnson 4.43)."""
     load_per_length = scene.operating.force / scene.geometry.length
     return float(np.sqrt(4.0 * load_per_length * scene.geometry.radius / (np.pi * effective_modulus(scene))))
+
+
+def hertz_ellipse(force: float, radius_x: float, radius_y: float, modulus: float) -> tuple[float, float]:
+    """Semi-axes (along x, along y) of the Hertz contact of a body with principal radii
+    radius_x, radius_y on a flat under ``force``, E* = ``modulus`` (Johnson 1985, section 4.2):
+    with the major semi-axis a along the larger radius R_1, the minor b = a sqrt(1 - e^2), the
+    eccentricity e solves R_1/R_2 = [E(e)/(1 - e^2) - K(e)] / [K(e) - E(e)] (K, E the complete
+    elliptic integrals of modulus e) and a^3 = 3 F R_1 (K - E) / (pi E* e^2); a circle of
+    radius (3 F R / (4 E*))^(1/3) where the radii are equal."""
+    big, small = max(radius_x, radius_y), min(radius_x, radius_y)
+    if big == small:
+        radius = (3.0 * force * big / (4.0 * modulus)) ** (1.0 / 3.0)
+        return radius, radius
+
+    def mismatch(m):  # m = e^2
+        k, e = ellipk(m), ellipe(m)
+        return (e / (1.0 - m) - k) / (k - e) - big / small
+
+    m = brentq(mismatch, 1e-12, 1.0 - 1e-14, xtol=1e-15, rtol=1e-12)
+    major = (3.0 * force * big * (ellipk(m) - ellipe(m)) / (math.pi * modulus * m)) ** (1.0 / 3.0)
+    minor = major * math.sqrt(1.0 - m)
+    return (minor, major) if radius_y > radius_x else (major, minor)
+
+
+def contact_half_width(scene) -> float:
+    """Half-width along x of the dry Hertz contact: the line contact's (hertz_half_width),
+    or for a crowned cylinder (geometry.crown_radius) the larger of that and its Hertz
+    ellipse's semi-axis along x (hertz_ellipse), which concentrates the load on a shorter
+    length where the ellipse is shorter than the cylinder."""
+    line = hertz_half_width(scene)
+    crown = scene.geometry.crown_radius
+    if crown is None:
+        return line
+    along_x, _ = hertz_ellipse(scene.operating.force, scene.geometry.radius, crown, effective_modulus(scene))
+    return max(line, along_x)
