@@ -26,7 +26,8 @@ Flags:
   X = x_min / sqrt(2 R h) is INLET_FILM_DEFICIT or more below the fully flooded one
   (:func:`lubecontact.physics.inlet.inlet_film_fraction`, h the thinnest fluid gap). The
   inlet is upstream of the sliding: at x_max where U < 0 (the return stroke of an
-  oscillation, whose automatic domain carries its inlet at x_min only).
+  oscillation, on an explicit domain; on the automatic one its steps go on the mirrored mesh,
+  whose inlet is there).
 """
 
 from __future__ import annotations

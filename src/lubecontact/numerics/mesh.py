@@ -184,6 +184,13 @@ def rest_mesh(mesh: Mesh, refinement: int) -> Mesh:
     return Mesh(x=x, y=mesh.y, length=mesh.length)
 
 
+def mirrored_mesh(mesh: Mesh) -> Mesh:
+    """``mesh`` mirrored about the line of contact, x -> -x: the mesh of a motion's return
+    strokes (unsteady/integrator.TimeIntegrator.reversed_domain), whose inlet lies beyond
+    x_max where the sliding reverses (docs/physics.md section 17); y as in ``mesh``."""
+    return Mesh(x=-mesh.x[::-1], y=mesh.y, length=mesh.length)
+
+
 def build_mesh(scene) -> Mesh:
     x_min, x_max = domain_x(scene)
     x = np.linspace(x_min, x_max, nodes_x(scene))

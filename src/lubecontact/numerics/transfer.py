@@ -41,11 +41,14 @@ def interpolate_field(field, source, target):
 
 def spline_along_x(field, source, target):
     """A (ny, nx) field on ``source`` at the nodes of ``target``, whose rows are those of
-    ``source`` and whose x lie within its domain: the not-a-knot cubic spline through each
-    row (exact for cubics; error O(dx^4) for a smooth field, where bilinear interpolation's is
-    O(dx^2)). For the elastic deformation, whose curvature reaches ~1/R over the contact, where
-    linear interpolation would leave film errors of up to dx^2/8R (12 nm on the Table 1
-    contact's 51-node mesh, dx = 32 um, R = 10 mm), beyond a time step's error weight."""
+    ``source``: the not-a-knot cubic spline through each row (exact for cubics; error O(dx^4)
+    for a smooth field, where bilinear interpolation's is O(dx^2)). For the elastic
+    deformation, whose curvature reaches ~1/R over the contact, where linear interpolation
+    would leave film errors of up to dx^2/8R (12 nm on the Table 1 contact's 51-node mesh,
+    dx = 32 um, R = 10 mm), beyond a time step's error weight. Beyond ``source``'s domain
+    (the inlet of a mirrored mesh, numerics/mesh.mirrored_mesh) the value at its edge, as
+    bilinear interpolation holds it: a cubic carried that far diverges, and there the
+    deformation varies as slowly as ln|x| (a line load's) under a gap of tens of um."""
     if source.nx < 4:
         return interpolate_field(field, source, target)
-    return CubicSpline(source.x, field, axis=-1)(target.x)
+    return CubicSpline(source.x, field, axis=-1)(np.clip(target.x, source.x[0], source.x[-1]))

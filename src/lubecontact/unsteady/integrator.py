@@ -53,7 +53,7 @@ from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.fluid_film import FLUID_FILM_FLOOR_SIGMAS, squeeze_content
 from lubecontact.model.model import Model, SolveError
 from lubecontact.model.monolithic_newton import dense_step_serves, monolithic_solve, needs_newton, steady_solve
-from lubecontact.numerics.mesh import build_mesh, rest_mesh
+from lubecontact.numerics.mesh import build_mesh, mirrored_mesh, rest_mesh
 from lubecontact.numerics.transfer import interpolate_field, spline_along_x
 from lubecontact.unsteady.dynamics import BaseExcitation, Dynamics
 from lubecontact.unsteady.motion import MAX_STEPS
@@ -461,11 +461,12 @@ def film_on(level: Level, model: Model) -> np.ndarray:
 
 
 def transferred(level: Level, model: Model) -> Level:
-    """``level`` on the mesh at rest of ``model`` (TimeIntegrator.rest_domain): the fields a
-    step reads of its last levels, at its nodes: the film (film_on) and the content it holds
-    (the squeeze history), the deformation; the pressure and the cavitated set, a warm
-    start only, bilinear, the pressure held at 0 on the new inlet boundary. Only for the
-    steps' history: the series keeps ``level`` itself."""
+    """``level`` on the mesh of ``model`` the steps move onto (TimeIntegrator.next_domain: the
+    mesh at rest, or the motion's mesh mirrored for a return stroke): the fields a step reads
+    of its last levels, at its nodes: the film (film_on) and the content it holds (the squeeze
+    history), the deformation; the pressure and the cavitated set, a warm start only,
+    bilinear, the pressure held at 0 on the new inlet boundary. Only for the steps' history:
+    the series keeps ``level`` itself."""
     source, target = level.model.mesh, model.mesh
     state, reynolds = level.state, level.state.reynolds
     if reynolds is not None:
@@ -500,7 +501,9 @@ class TimeIntegrator:
         self.contact = steady.contact
         self.floor = steady.contact.sigma if steady.contact is not None else FILM_FLOOR
         self.steady_model = steady
-        self.step_model = steady  # the model the steps are built on: steady's, then rest_domain's
+        self.step_model = steady  # the model the steps are built on: steady's, reversed_domain's, rest_domain's
+        self.forward = steady  # the motion's model while it slides forward (U > 0)
+        self.backward = None  # and backward (reversed_domain), built at the first reversal
         self.dynamics = Dynamics.from_scene(scene)
         self.base = BaseExcitation.from_scene(scene)
         self.coupled_solves = 0
@@ -520,6 +523,35 @@ class TimeIntegrator:
             return None
         mesh = rest_mesh(self.steady_model.mesh, self.scene.motion.rest_refinement)
         return Model.assemble(scene_at(self.scene, 0.0), mesh=mesh, contact=self.contact)
+
+    def reversed_domain(self) -> Model | None:
+        """The model a motion's return strokes (U < 0) go on with: the motion's mesh mirrored
+        about the line of contact (numerics/mesh.mirrored_mesh), its inlet beyond x_max where
+        the block now comes from; None on an explicit domain (mesh.x_min) or for a motion that
+        never reverses. On the forward mesh a return stroke draws its film from the outlet's
+        1.5 length scales: 1 %, 7 % and 44 % thinner than the forward stroke's under 0.1, 1
+        and 10 Pa s (docs/physics.md section 17)."""
+        if self.scene.mesh.x_min is not None or not self.history.reverses():
+            return None
+        if self.backward is None:
+            mesh = mirrored_mesh(self.forward.mesh)
+            self.backward = Model.assemble(scene_at(self.scene, -self.history.peak_speed()), mesh=mesh,
+                                           contact=self.contact)
+        return self.backward
+
+    def next_domain(self, level: Level, rest: Model | None) -> Model | None:
+        """The model the steps move onto after accepting ``level``, None where they stay: the
+        mesh at rest (rest_domain) once the nodes outside it carry less than motion.tolerance of
+        the load (outside_load), else the motion's mesh whose inlet lies upstream of the sliding
+        (forward, or reversed_domain's where U < 0), once the sliding has reversed."""
+        if self.step_model is rest:
+            return None
+        if rest is not None and level.time >= self.history.rest_from and \
+                abs(self.outside_load(level, rest)) <= self.tolerance:
+            return rest
+        if level.speed == 0.0 or (level.speed > 0.0) == (self.step_model is self.forward):
+            return None
+        return self.forward if level.speed > 0.0 else self.reversed_domain()
 
     def outside_load(self, level: Level, model: Model) -> float:
         """The share of the applied force that ``level``'s pressure carries on the nodes of its
@@ -739,10 +771,10 @@ class TimeIntegrator:
                     levels.append(level)
                     if stepping is not levels:
                         stepping.append(level)
-                    elif rest is not None and t_new >= history.rest_from and \
-                            abs(self.outside_load(level, rest)) <= self.tolerance:
-                        self.step_model = rest
-                        stepping = [levels[0], *(transferred(lv, rest) for lv in levels[-3:])]
+                    domain = self.next_domain(level, rest)
+                    if domain is not None:
+                        self.step_model = domain
+                        stepping = [levels[0], *(transferred(lv, domain) for lv in levels[-3:])]
                     ceiling.accepted(t_new - t)
                     bar.update(t_new - t)
                     bar.set_postfix_str(f"dt = {t_new - t:.2g} s, steps {len(levels) - 2}")

@@ -78,6 +78,11 @@ class SpeedHistory:
             return abs(self.amplitude_speed)
         return float(np.max(np.abs(self.speeds)))
 
+    def reverses(self) -> bool:
+        """Whether the sliding runs backwards (U < 0) at some instant: an oscillation, or a
+        table with a negative speed."""
+        return self.period is not None or bool(np.any(self.speeds < 0.0))
+
     def breakpoints(self) -> list[float]:
         """Instants where U is not smooth: steps land on them."""
         return sorted({float(t) for t in self.times if 0.0 < t < self.end} | ({self.rest_from} if self.rest_from else set()))
