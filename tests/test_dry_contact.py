@@ -3,9 +3,10 @@ Hertz line contact (Johnson 1985 Ch. 4; docs/physics.md section 6) and physical 
 
 import numpy as np
 import pytest
+from scipy.special import ellipe, ellipk
 
 import lubecontact as lc
-from lubecontact.physics.film_estimates import hertz_ellipse
+from lubecontact.physics.film_estimates import complete_elliptic_integrals, hertz_ellipse
 
 TABLE1 = "config/scenes/table1.yaml"
 
@@ -148,6 +149,11 @@ def test_a_crowned_cylinder_touches_on_hertz_ellipse():
     assert np.sqrt(5.0 * (p * x**2).sum() / load) == pytest.approx(a_x, rel=0.04)
     assert np.sqrt(5.0 * (p * y**2).sum() / load) == pytest.approx(a_y, rel=0.02)
     assert p.max() == pytest.approx(3.0 * 5.0 / (2.0 * np.pi * a_x * a_y), rel=0.03)
+
+
+def test_complete_elliptic_integrals_match_scipy():
+    for m in (0.0, 1e-9, 0.3, 0.9, 0.95, 0.999999):
+        assert complete_elliptic_integrals(m) == pytest.approx((ellipk(m), ellipe(m)), rel=1e-13)
 
 
 def test_hertz_ellipse_meets_the_circle_and_hamrock_brewe():

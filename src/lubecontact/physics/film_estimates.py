@@ -10,8 +10,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
-from scipy.special import ellipe, ellipk
 
 from lubecontact.physics.materials import effective_modulus
 
@@ -100,24 +98,52 @@ def hertz_half_width(scene) -> float:
     return float(np.sqrt(4.0 * load_per_length * scene.geometry.radius / (np.pi * effective_modulus(scene))))
 
 
+def complete_elliptic_integrals(m: float) -> tuple[float, float]:
+    """(K(m), E(m)), the complete elliptic integrals of the first and second kind of
+    parameter m = e^2 < 1, by the arithmetic-geometric mean (Abramowitz and Stegun 17.6):
+    K = pi / (2 a_N), E = K (1 - sum 2^(n-1) c_n^2), c_0^2 = m. Hand-written, in numpy, for
+    the mesh and the scene checks, which load no scipy (tests/test_startup.py); held to
+    scipy.special.ellipk and ellipe in tests/test_dry_contact.py."""
+    a, b, c2 = 1.0, math.sqrt(1.0 - m), m
+    total, weight = 0.5 * c2, 0.5
+    while True:
+        c = 0.5 * (a - b)
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+        weight *= 2.0
+        total += weight * c * c
+        if c * c <= 1e-17 * a * a:
+            break
+    k = math.pi / (2.0 * a)
+    return k, k * (1.0 - total)
+
+
 def hertz_ellipse(force: float, radius_x: float, radius_y: float, modulus: float) -> tuple[float, float]:
     """Semi-axes (along x, along y) of the Hertz contact of a body with principal radii
     radius_x, radius_y on a flat under ``force``, E* = ``modulus`` (Johnson 1985, section 4.2):
     with the major semi-axis a along the larger radius R_1, the minor b = a sqrt(1 - e^2), the
     eccentricity e solves R_1/R_2 = [E(e)/(1 - e^2) - K(e)] / [K(e) - E(e)] (K, E the complete
-    elliptic integrals of modulus e) and a^3 = 3 F R_1 (K - E) / (pi E* e^2); a circle of
-    radius (3 F R / (4 E*))^(1/3) where the radii are equal."""
+    elliptic integrals, complete_elliptic_integrals; bisected in ln(1 - e^2), where the ratio
+    rises monotonically from 1) and a^3 = 3 F R_1 (K - E) / (pi E* e^2); a circle of radius
+    (3 F R / (4 E*))^(1/3) where the radii are equal."""
     big, small = max(radius_x, radius_y), min(radius_x, radius_y)
     if big == small:
         radius = (3.0 * force * big / (4.0 * modulus)) ** (1.0 / 3.0)
         return radius, radius
 
-    def mismatch(m):  # m = e^2
-        k, e = ellipk(m), ellipe(m)
-        return (e / (1.0 - m) - k) / (k - e) - big / small
+    def ratio(m):
+        k, e = complete_elliptic_integrals(m)
+        return (e / (1.0 - m) - k) / (k - e)
 
-    m = brentq(mismatch, 1e-12, 1.0 - 1e-14, xtol=1e-15, rtol=1e-12)
-    major = (3.0 * force * big * (ellipk(m) - ellipe(m)) / (math.pi * modulus * m)) ** (1.0 / 3.0)
+    low, high = 1e-12, 60.0  # -ln(1 - e^2): e^2 from 1e-12 to 1 - 9e-27
+    for _ in range(100):  # 60 / 2^100: far below round-off
+        middle = 0.5 * (low + high)
+        if ratio(-math.expm1(-middle)) < big / small:
+            low = middle
+        else:
+            high = middle
+    m = -math.expm1(-0.5 * (low + high))
+    k, e = complete_elliptic_integrals(m)
+    major = (3.0 * force * big * (k - e) / (math.pi * modulus * m)) ** (1.0 / 3.0)
     minor = major * math.sqrt(1.0 - m)
     return (minor, major) if radius_y > radius_x else (major, minor)
 
