@@ -95,6 +95,20 @@ def test_the_mesh_error_bar_is_a_switch_that_costs_nothing_when_off(capsys, tmp_
                  "--set", "motion.mesh_error_bar=true", "--out", str(tmp_path / "s.nc")]) == 0
     out, err = capsys.readouterr()
     assert "reconnect_time_mesh_error" in out and "mesh error bar: a second run" in err
+    assert "so the converged reconnect time is about" in out and "not estimated" not in out
+
+
+def test_a_reconnect_time_without_its_mesh_error_says_it_is_not_estimated(capsys, tmp_path):
+    """Off, the error stays unseen in the numbers, never in the words: the file's notes and the
+    summary say it is not estimated and how to estimate it."""
+    assert main(["transient", TABLE1, *[f"--set={k}={v}" for k, v in STOP.items()], "--set", "motion.tolerance=1e-2",
+                 "--out", str(tmp_path / "s.nc")]) == 0
+    assert "its mesh error is not estimated (motion.mesh_error_bar: true)" in capsys.readouterr().out
+    ds = run(1e-2, False)
+    assert "reconnect_time is short by the mesh's error" in ds.attrs["notes"]
+    assert "short by the mesh's error" not in lc.transient(lc.load_scene(TABLE1, {**STOP, "motion.tolerance": 1e-2,
+                                                                                  "motion.mesh_error_bar": True}),
+                                                            progress=False).attrs["notes"]
 
 
 def test_no_mesh_error_bar_without_a_reconnection():

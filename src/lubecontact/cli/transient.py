@@ -25,8 +25,12 @@ def summary(ds) -> str:
         lines.append(f"{'reconnect_time_error':>22s} = {ds['reconnect_time_error'].item():.3g} s "
                      f"(time integration, from a run at motion.tolerance / 10)")
     if "reconnect_time_mesh_error" in ds:
-        lines.append(f"{'reconnect_time_mesh_error':>22s} = {ds['reconnect_time_mesh_error'].item():+.3g} s "
+        error = ds["reconnect_time_mesh_error"].item()
+        lines.append(f"{'reconnect_time_mesh_error':>22s} = {error:+.3g} s "
                      f"(the converged value minus this run's, from a run on a mesh twice as fine along x)")
+        if math.isfinite(error):
+            lines.append(f"{'':>22s}   so the converged reconnect time is about "
+                         f"{ds['reconnect_time'].item() + error:.6g} s")
     lines.append(f"{'converged':>22s} = {'yes' if ds['converged'].item() == 1 else 'NO'}")
     return "\n".join(lines)
 
@@ -43,6 +47,9 @@ def explained(ds, scene) -> list[str]:
     elif math.isinf(reconnect):
         lines.append(f"  reconnect_time = inf: not reconnected within motion.duration = {motion.duration:g} s "
                      f"(R stayed above {motion.reconnect_factor:g} x rest_resistance)")
+    if "reconnect_time_mesh_error" not in ds and math.isfinite(reconnect) and reconnect > 0.0:
+        lines.append("  reconnect_time: its mesh error is not estimated (motion.mesh_error_bar: true), and on the "
+                     "default mesh it is most of the error (docs/physics.md section 14)")
     for name, second in (("reconnect_time_error", "at motion.tolerance / 10"),
                          ("reconnect_time_mesh_error", "on a mesh twice as fine along x")):
         if name in ds and math.isnan(ds[name].item()) and math.isfinite(reconnect):

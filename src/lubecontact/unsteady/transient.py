@@ -107,6 +107,12 @@ def ended_in_a_jump(jumps, levels, reconnected: float) -> str:
 # docs/physics.md section 14, "Error bar of a reconnect time"), so the estimate errs long where
 # the convergence is faster.
 MESH_ERROR_ORDER = 1.0
+# said with every reconnect time whose mesh error was not estimated: on the Table 1 stop it is
+# most of the default mesh's error (docs/physics.md section 14, "Error bar of a reconnect time")
+MESH_ERROR_UNSEEN = ("reconnect_time is short by the mesh's error, first order in the spacing along x at rest and "
+                     "on the Table 1 stop's default mesh most of its error: motion.mesh_error_bar: true estimates it "
+                     "from a second run on a mesh twice as fine (docs/physics.md section 14, \"Error bar of a "
+                     "reconnect time\")")
 
 
 def tighter_reconnect_time(scene, history, rest: float, progress: bool) -> float:
@@ -281,6 +287,8 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
                      f"{scene.motion.tolerance / ERROR_BAR_TIGHTENING:g}: {tight!r} s there")
     if scene.motion.mesh_error_bar:
         scalars["reconnect_time_mesh_error"] = mesh_error(recon, finer)
+    elif math.isfinite(recon) and recon > 0.0:
+        notes.append(MESH_ERROR_UNSEEN)
     if finer is not None:
         there = "it did not converge, so no mesh error is given" if math.isnan(finer) else f"{finer!r} s there"
         notes.append(f"reconnect_time mesh error from a second run on {finer_mesh}: {there}")
