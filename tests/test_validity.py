@@ -123,6 +123,15 @@ def test_inlet_flag_follows_the_film():
     assert "inlet" not in flags(solve(**{"operating.speed": 0.0}))
 
 
+def test_a_stopped_contact_has_no_inlet_to_starve():
+    """After a stop the squeeze film's pressure acts with U = 0: nothing is entrained, and
+    the flag stays off there (it was raised at every instant at rest, from the end of the
+    ramp on, on the 31-node line stop from 1 m/s)."""
+    ds = lc.transient(lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.speed": 1.0,
+                                             "motion.duration": 0.01, "motion.tolerance": 1e-2}), progress=False)
+    assert ds["converged"].item() == 1 and "inlet" not in ds.attrs["validity_notes"]
+
+
 def test_flow_factor_range_and_a_clean_case():
     assert "flow_factor_range" in flags(solve(**{"operating.speed": 1e-3}))
     clean = solve(**{"roughness.sigma": 0.3e-6, "operating.speed": 0.5, "operating.force": 1.0,

@@ -135,7 +135,7 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
                     f"Patir-Cheng's fitted range the pressure flow is the percolation interpolation to zero at "
                     f"h = 0 (docs/physics.md section 15), and those nodes carry "
                     f"{100 * share(state.fluid_pressure * area, thin):.3g} % of the fluid load")
-    if hydrodynamic:
+    if hydrodynamic and scene.operating.speed != 0.0:  # at rest nothing is entrained: no inlet to starve
         gap = state.expected_gap if state.expected_gap is not None else state.film
         thinnest = float(np.min(gap))
         end, key, node = (("x_max", "mesh.x_max: the sliding reverses", -1) if scene.operating.speed < 0.0
