@@ -110,20 +110,27 @@ def test_a_cylinder_crowned_at_its_own_radius_touches_as_a_sphere_hertz_circle()
     a = (3 F R / 4 E*)^(1/3) = 116.4 um and p0 = 3 F / (2 pi a^2) = 176.2 MPa on Table 1 (E* =
     23.78 GPa). Nearly smooth elastic asperities carry it, as in the line test above; the
     radius from the pressure's second moment (Hertz: <x^2> = a^2/5), the same along x and y."""
+    a_x, a_y, peak = crowned_contact(0.01, 2.5e-4)
+    a = (3.0 * 5.0 * 0.01 / (4.0 * 23.78e9)) ** (1.0 / 3.0)
+    assert a_x == pytest.approx(a, rel=0.03) and a_y == pytest.approx(a_x, rel=1e-3)
+    assert peak == pytest.approx(3.0 * 5.0 / (2.0 * np.pi * a**2), rel=0.03)
+
+
+def crowned_contact(crown: float, half_domain: float) -> tuple[float, float, float]:
+    """(semi-axis along x, along y, peak pressure) of Table 1 crowned at ``crown``, dry, on
+    nearly smooth elastic asperities, 61 x 121 nodes on x in +-``half_domain``: the semi-axes
+    from the pressure's second moments (Hertz: <x^2> = a_x^2/5, <y^2> = a_y^2/5)."""
     scene = dry(**{
-        "geometry.crown_radius": 0.01, "roughness.sigma": 5e-9, "roughness.asperity_density": 1e11,
-        "effects.plasticity": False, "mesh.nx": 61, "mesh.ny": 121, "mesh.x_min": -2.5e-4, "mesh.x_max": 2.5e-4,
-        "solver.tolerance": 1e-8,
+        "geometry.crown_radius": crown, "roughness.sigma": 5e-9, "roughness.asperity_density": 1e11,
+        "effects.plasticity": False, "mesh.nx": 61, "mesh.ny": 121, "mesh.x_min": -half_domain,
+        "mesh.x_max": half_domain, "solver.tolerance": 1e-8,
     })
     ds = lc.solve(scene, fields=True)
     assert ds["converged"].item() == 1
     p = ds["contact_pressure"].values
     x, y = np.meshgrid(ds["x"].values, ds["y"].values)
     load = p.sum()
-    a_x, a_y = np.sqrt(5.0 * (p * x**2).sum() / load), np.sqrt(5.0 * (p * y**2).sum() / load)
-    a = (3.0 * 5.0 * 0.01 / (4.0 * 23.78e9)) ** (1.0 / 3.0)
-    assert a_x == pytest.approx(a, rel=0.03) and a_y == pytest.approx(a_x, rel=1e-3)
-    assert p.max() == pytest.approx(3.0 * 5.0 / (2.0 * np.pi * a**2), rel=0.03)
+    return np.sqrt(5.0 * (p * x**2).sum() / load), np.sqrt(5.0 * (p * y**2).sum() / load), p.max()
 
 
 def test_a_crowned_cylinder_touches_on_hertz_ellipse():
@@ -136,19 +143,9 @@ def test_a_crowned_cylinder_touches_on_hertz_ellipse():
     circle's radius above is 1.3 % wide). The ellipse is shorter than the cylinder (2 a_y < L),
     so the ends stay free."""
     a_x, a_y = hertz_ellipse(5.0, 0.01, 0.1, 23.78e9)
-    scene = dry(**{
-        "geometry.crown_radius": 0.1, "roughness.sigma": 5e-9, "roughness.asperity_density": 1e11,
-        "effects.plasticity": False, "mesh.nx": 61, "mesh.ny": 121, "mesh.x_min": -1.5e-4, "mesh.x_max": 1.5e-4,
-        "solver.tolerance": 1e-8,
-    })
-    ds = lc.solve(scene, fields=True)
-    assert ds["converged"].item() == 1
-    p = ds["contact_pressure"].values
-    x, y = np.meshgrid(ds["x"].values, ds["y"].values)
-    load = p.sum()
-    assert np.sqrt(5.0 * (p * x**2).sum() / load) == pytest.approx(a_x, rel=0.04)
-    assert np.sqrt(5.0 * (p * y**2).sum() / load) == pytest.approx(a_y, rel=0.02)
-    assert p.max() == pytest.approx(3.0 * 5.0 / (2.0 * np.pi * a_x * a_y), rel=0.03)
+    along_x, along_y, peak = crowned_contact(0.1, 1.5e-4)
+    assert along_x == pytest.approx(a_x, rel=0.04) and along_y == pytest.approx(a_y, rel=0.02)
+    assert peak == pytest.approx(3.0 * 5.0 / (2.0 * np.pi * a_x * a_y), rel=0.03)
 
 
 def test_complete_elliptic_integrals_match_scipy():
