@@ -11,8 +11,9 @@ Automatic domain (``x_min``/``x_max`` = auto): the length scale
 cylinder's ellipse where it is wider, film_estimates.contact_half_width) and the
 inlet/outlet zone where the undeformed gap (Eq. 4) is below ten roughness heights, the
 film a fluid can build; without asperity contact, on deforming bodies, s = 2 b_H (the
-smooth film is as thin as the load and the speed make it, whatever the roughness). The domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the
-fluid pressure builds, than downstream, where it cavitates.
+smooth film is as thin as the load and the speed make it, whatever the roughness). The
+domain is ``[-3.5 s, 1.5 s]``: longer upstream, where the fluid pressure builds, than
+downstream, where it cavitates.
 
 The inlet follows the film (docs/physics.md section 17): a film h fed from an inlet that ends at
 X = x_min/sqrt(2 R h) is short of the fully flooded one by ~2.5/X^2 (lubecontact.physics.inlet),
