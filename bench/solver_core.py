@@ -38,7 +38,7 @@ from scipy.sparse.linalg import splu
 from threadpoolctl import threadpool_limits
 
 import lubecontact as lc
-from run import SCENE, SPEEDS, time_figures
+from run import SCENE, SPEEDS, log, time_figures
 from transient import stop_scene
 
 UNIT_NODES = 201  # the unit's Laplacian: UNIT_NODES x UNIT_NODES nodes
@@ -56,10 +56,6 @@ FAILING = {  # the issue's cases that failed when it was filed, at default toler
                                                      "motion.cycles": 1},
 }
 TARGETS = {"point_51": 0.2, "point_201": 2.5, "stop_in_points": 30.0, "stop_71_over_51": 3.0, "figures_min": 10.0}
-
-
-def log(message: str) -> None:
-    print(f"solver_core: {message}", file=sys.stderr, flush=True)
 
 
 def cpu_seconds(call) -> tuple[float, object]:

@@ -70,7 +70,7 @@ def test_the_steps_change_meshes_where_the_sliding_reverses():
     runner = integrator.TimeIntegrator(scene, history)
     levels, failure = runner.run()
     assert not failure and runner.backward is not None
-    forward, backward = runner.forward.mesh, runner.backward.mesh
+    forward, backward = runner.steady_model.mesh, runner.backward.mesh
     np.testing.assert_array_equal(backward.x, -forward.x[::-1])
     moving = [level for level in levels if level.speed != 0.0]
     switches = sum(a.model.mesh is not b.model.mesh for a, b in zip(moving, moving[1:]))

@@ -8,7 +8,7 @@ import sys
 from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_NOT_CONVERGED, EXIT_OK
 from lubecontact.io.case_schema import write_case
 from lubecontact.scene import SceneError
-from lubecontact.unsteady.transient import transient
+from lubecontact.unsteady.transient import MESH_ERROR_UNSEEN, transient
 
 SUMMARY = ("reconnect_time", "rest_resistance", "open_fraction", "steps", "rejected_steps", "coupled_solves", "solve_time")
 
@@ -47,7 +47,7 @@ def explained(ds, scene) -> list[str]:
     elif math.isinf(reconnect):
         lines.append(f"  reconnect_time = inf: not reconnected within motion.duration = {motion.duration:g} s "
                      f"(R stayed above {motion.reconnect_factor:g} x rest_resistance)")
-    if "reconnect_time_mesh_error" not in ds and math.isfinite(reconnect) and reconnect > 0.0:
+    if MESH_ERROR_UNSEEN in ds.attrs["notes"]:
         lines.append("  reconnect_time: its mesh error is not estimated (motion.mesh_error_bar: true), and on the "
                      "default mesh it is most of the error (docs/physics.md section 14)")
     for name, second in (("reconnect_time_error", "at motion.tolerance / 10"),

@@ -502,8 +502,7 @@ class TimeIntegrator:
         self.floor = steady.contact.sigma if steady.contact is not None else FILM_FLOOR
         self.steady_model = steady
         self.step_model = steady  # the model the steps are built on: steady's, reversed_domain's, rest_domain's
-        self.forward = steady  # the motion's model while it slides forward (U > 0)
-        self.backward = None  # and backward (reversed_domain), built at the first reversal
+        self.backward = None  # the motion's model while it slides backward (reversed_domain), built at need
         self.dynamics = Dynamics.from_scene(scene)
         self.base = BaseExcitation.from_scene(scene)
         self.coupled_solves = 0
@@ -534,7 +533,7 @@ class TimeIntegrator:
         if self.scene.mesh.x_min is not None or not self.history.reverses():
             return None
         if self.backward is None:
-            mesh = mirrored_mesh(self.forward.mesh)
+            mesh = mirrored_mesh(self.steady_model.mesh)
             self.backward = Model.assemble(scene_at(self.scene, -self.history.peak_speed()), mesh=mesh,
                                            contact=self.contact)
         return self.backward
@@ -543,15 +542,15 @@ class TimeIntegrator:
         """The model the steps move onto after accepting ``level``, None where they stay: the
         mesh at rest (rest_domain) once the nodes outside it carry less than motion.tolerance of
         the load (outside_load), else the motion's mesh whose inlet lies upstream of the sliding
-        (forward, or reversed_domain's where U < 0), once the sliding has reversed."""
+        (steady_model's, or reversed_domain's where U < 0), once the sliding has reversed."""
         if self.step_model is rest:
             return None
         if rest is not None and level.time >= self.history.rest_from and \
                 abs(self.outside_load(level, rest)) <= self.tolerance:
             return rest
-        if level.speed == 0.0 or (level.speed > 0.0) == (self.step_model is self.forward):
+        if level.speed == 0.0 or (level.speed > 0.0) == (self.step_model is self.steady_model):
             return None
-        return self.forward if level.speed > 0.0 else self.reversed_domain()
+        return self.steady_model if level.speed > 0.0 else self.reversed_domain()
 
     def outside_load(self, level: Level, model: Model) -> float:
         """The share of the applied force that ``level``'s pressure carries on the nodes of its
