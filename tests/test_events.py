@@ -18,7 +18,8 @@ from cfcheck import cf_findings
 import lubecontact as lc
 from lubecontact.cli.main import main
 from lubecontact.unsteady.events import dense_film, locate_events
-from lubecontact.unsteady.transient import ended_in_a_jump, impasse_jumps, times_within_jumps
+from lubecontact.unsteady.transient import (ended_in_a_jump, impasse_jumps, jump_share_note, jumps_before,
+                                             times_within_jumps)
 
 # film h(t) = H0 + A sin(omega t) on a few nodes; R = R0 exp(h / LENGTH), so R > R0 exp(h*/LENGTH)
 # exactly when sin(omega t) > s = (h* - H0) / A: the open intervals are known in closed form
@@ -284,3 +285,24 @@ def test_a_run_that_ends_in_a_jump_without_reconnecting_says_so():
     ordinary = levels + [SimpleNamespace(time=12.0, impasse="")]
     assert ended_in_a_jump(impasse_jumps(ordinary), ordinary, math.inf) == ""
     assert ended_in_a_jump([], levels[:2], math.inf) == ""
+
+
+def test_a_reconnection_after_impasse_jumps_carries_their_length():
+    """transient.jumps_before and jump_share_note: the jumps that start before the reconnection
+    (absolute time) add up, by hand here, to the uncertainty reconnect_time carries (a time
+    after a jump inherits where the state went within it); the note speaks where that exceeds
+    motion.tolerance of the reconnect time, and says nothing below it, without a jump or
+    without a reconnection."""
+    levels = [SimpleNamespace(time=t, impasse=impasse) for t, impasse in
+              ((0.0, ""), (1e-3, ""), (1.2e-3, "x = 0 mm"), (2e-3, ""), (12e-3, "x = 0.1 mm"), (20e-3, ""),
+               (21e-3, "x = 0.2 mm"))]
+    jumps = impasse_jumps(levels)
+    assert jumps_before(jumps, 15e-3) == pytest.approx(0.2e-3 + 10e-3, rel=1e-12)  # the third starts after
+    assert jumps_before(jumps, 1.5e-3) == pytest.approx(0.2e-3, rel=1e-12)
+    assert jumps_before(jumps, 0.5e-3) == 0.0 and jumps_before([], 15e-3) == 0.0
+    assert math.isnan(jumps_before(jumps, math.inf))
+    # reconnected 14 ms after the rest began at 1 ms: 10.2 ms of jumps are 73 % of it
+    note = jump_share_note(jumps_before(jumps, 15e-3), 14e-3, 1e-3)
+    assert "impasse jumps of 0.0102 s in all (73 % of it)" in note and "reconnect_time_jumps" in note
+    assert jump_share_note(1e-8, 14e-3, 1e-3) == ""  # within the accuracy asked for
+    assert jump_share_note(0.0, 14e-3, 1e-3) == "" and jump_share_note(math.nan, math.inf, 1e-3) == ""

@@ -356,6 +356,13 @@ def test_a_jump_over_an_impasse_is_said_and_lands_where_looser_tolerances_point(
     assert jumps >= 1 and f"{jumps} impasse jump(s)" in notes and ds["impasse_jump"].sum() == jumps
     assert "a pocket sealing at x = 0 mm" in notes and "accepted without the error test" in notes
     assert 0.0 < ds["longest_impasse_jump"].item() < 1e-3 * ds["reconnect_time"].item()
+    # the jumps before the reconnection, by hand from the series' own flags
+    times, flags = ds["time"].values, ds["impasse_jump"].values
+    motion = lc.load_scene(TABLE1, CASES["tight_stop_to_reconnect"][1]).motion
+    stopped = motion.stop_time + motion.ramp  # the rest begins: reconnect_time counts from there
+    by_hand = sum(times[k] - times[k - 1] for k in np.flatnonzero(flags)
+                  if times[k - 1] < stopped + ds["reconnect_time"].item())
+    assert ds["reconnect_time_jumps"].item() == pytest.approx(by_hand, rel=1e-12) and by_hand > 0.0
     _, overrides, _ = CASES["tight_stop_to_reconnect"]
     looser, jump = {}, {}
     for tolerance in (1e-3, 2e-4):

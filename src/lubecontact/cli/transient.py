@@ -21,6 +21,10 @@ def summary(ds) -> str:
         var = ds[name]
         units = "" if var.attrs["units"] == "1" else f" {var.attrs['units']}"
         lines.append(f"{name:>22s} = {var.item():.6g}{units}")
+    jumped = ds["reconnect_time_jumps"].item() if "reconnect_time_jumps" in ds else 0.0
+    if jumped > 0.0:
+        lines.append(f"{'reconnect_time_jumps':>22s} = {jumped:.3g} s (impasse jumps before the reconnection: "
+                     "reconnect_time is uncertain by their length)")
     if "reconnect_time_error" in ds:
         lines.append(f"{'reconnect_time_error':>22s} = {ds['reconnect_time_error'].item():.3g} s "
                      f"(time integration, from a run at motion.tolerance / 10)")

@@ -50,6 +50,8 @@ SCALARS = {
     "impasse_jumps": ("1", "steps over an impasse at a sealing pocket, accepted without the error test (the state "
                            "jumps there)"),
     "longest_impasse_jump": ("s", "the longest such step (0: none): a time within it is uncertain by its length"),
+    "reconnect_time_jumps": ("s", "total length of the impasse jumps before the reconnection (0: none; nan: no "
+                                  "reconnection): reconnect_time's uncertainty from them"),
     "reconnect_time_error": ("s", "estimated time-integration error of reconnect_time (motion.error_bar): "
                                   "from a second run at motion.tolerance / 10, Richardson in the tolerance"),
     "reconnect_time_mesh_error": ("s", "estimated mesh error of reconnect_time (motion.mesh_error_bar): the "

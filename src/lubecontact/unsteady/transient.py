@@ -86,6 +86,33 @@ def times_within_jumps(jumps, located: dict[str, float]) -> str:
             "uncertainty): " + "; ".join(inside))
 
 
+def jumps_before(jumps, instant: float) -> float:
+    """Total length (s) of the impasse jumps (``impasse_jumps``) that start before ``instant``
+    (an absolute time, s): NaN where ``instant`` is not finite (no reconnection), 0 without a
+    jump. Where the state jumped within such a step is not known, so a time after it carries
+    its length as uncertainty, as a time within it does (docs/physics.md section 14, "The
+    impasse at a sealing pocket")."""
+    if not math.isfinite(instant):
+        return math.nan
+    return float(sum(level.time - before.time for before, level in jumps if before.time < instant))
+
+
+def jump_share_note(jumped: float, reconnected: float, tolerance: float) -> str:
+    """What a run says whose reconnection comes after impasse jumps of ``jumped`` s in all
+    (jumps_before) that exceed ``tolerance`` (motion.tolerance) of its reconnect time
+    ``reconnected`` (s), "" otherwise: below that share the jumps are within the accuracy the
+    run was asked for. On a crowned Table 1 stop at 51 x 21 with the mesh at rest four times
+    finer a jump of 16.7 ms (error estimate 132 times the tolerance) preceded a reconnection
+    15 ms later than the same stop's on the meshes either side of it (bench/EXPERIMENTS.md,
+    twenty-eighth session)."""
+    if not (math.isfinite(reconnected) and reconnected > 0.0 and jumped > tolerance * reconnected):
+        return ""
+    return (f"reconnect_time comes after impasse jumps of {jumped:.3g} s in all ({100.0 * jumped / reconnected:.2g} % "
+            "of it): the state after a jump is that step's first-order landing, so reconnect_time carries their "
+            "length as its uncertainty (reconnect_time_jumps); a run at another motion.tolerance or mesh "
+            "(motion.error_bar, motion.mesh_error_bar) shows how far it moves")
+
+
 def ended_in_a_jump(jumps, levels, reconnected: float) -> str:
     """What a run says whose last step jumped over an impasse (``impasse_jumps``) and which did
     not reconnect (``reconnected`` infinite), "" otherwise: its end is where that jump, a
@@ -298,6 +325,11 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     opened = level_events(levels, resistance, threshold, min_duration)
     relative = level_events(levels, resistance, scene.motion.reconnect_factor * rest, min_duration)
     scalars |= event_scalars(opened, relative)
+    if history.rest_from is not None:
+        scalars["reconnect_time_jumps"] = jumps_before(jumps, history.rest_from + recon)
+        shared = jump_share_note(scalars["reconnect_time_jumps"], recon, scene.motion.tolerance)
+        if shared:
+            notes.append(shared)
     located = {"the reconnection": history.rest_from + recon} if math.isfinite(recon) else {}
     for k, event in enumerate(opened.events, start=1):
         located |= {f"event {k}'s start": event.start, f"event {k}'s end": event.end}
