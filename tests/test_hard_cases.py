@@ -21,6 +21,7 @@ import numpy as np
 import pytest
 
 import lubecontact as lc
+from lubecontact.cli.transient import summary
 from lubecontact.unsteady import integrator
 
 TABLE1 = "config/scenes/table1.yaml"
@@ -363,6 +364,7 @@ def test_a_jump_over_an_impasse_is_said_and_lands_where_looser_tolerances_point(
     by_hand = sum(times[k] - times[k - 1] for k in np.flatnonzero(flags)
                   if times[k - 1] < stopped + ds["reconnect_time"].item())
     assert ds["reconnect_time_jumps"].item() == pytest.approx(by_hand, rel=1e-12) and by_hand > 0.0
+    assert f"reconnect_time_jumps = {by_hand:.3g} s (impasse jumps before the reconnection" in summary(ds)
     _, overrides, _ = CASES["tight_stop_to_reconnect"]
     looser, jump = {}, {}
     for tolerance in (1e-3, 2e-4):
