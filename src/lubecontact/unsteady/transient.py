@@ -142,11 +142,13 @@ MESH_ERROR_UNSEEN = ("reconnect_time is short by the mesh's error, first order i
                      "reconnect time\")")
 
 
-def tighter_reconnect_time(scene, history, rest: float, progress: bool) -> float:
-    """reconnect_time of the same motion at motion.tolerance / ERROR_BAR_TIGHTENING (NaN if
-    that run fails)."""
-    motion = dataclasses.replace(scene.motion, tolerance=scene.motion.tolerance / ERROR_BAR_TIGHTENING)
-    return second_reconnect_time(dataclasses.replace(scene, motion=motion), history, progress, rest)
+def tighter_scene(scene):
+    """(``scene`` at motion.tolerance / ERROR_BAR_TIGHTENING, that tolerance in words): the
+    second run of motion.error_bar, on the same mesh (so its reconnection is timed against
+    the first run's resistance at rest)."""
+    tolerance = scene.motion.tolerance / ERROR_BAR_TIGHTENING
+    motion = dataclasses.replace(scene.motion, tolerance=tolerance)
+    return dataclasses.replace(scene, motion=motion), f"motion.tolerance = {tolerance:g}"
 
 
 def finer_mesh_scene(scene):
@@ -272,9 +274,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         tight = finer = None
         if history.rest_from is not None and not failure:
             if scene.motion.error_bar:
-                _to_stderr(f"error bar: a second run at motion.tolerance = "
-                           f"{scene.motion.tolerance / ERROR_BAR_TIGHTENING:g}")
-                tight = tighter_reconnect_time(scene, history, rest, progress)
+                tighter, tighter_words = tighter_scene(scene)
+                _to_stderr(f"error bar: a second run at {tighter_words}")
+                tight = second_reconnect_time(tighter, history, progress, rest)
             if scene.motion.mesh_error_bar:
                 finer_scene, finer_mesh = finer_mesh_scene(scene)
                 _to_stderr(f"mesh error bar: a second run on {finer_mesh}")
@@ -310,8 +312,7 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     if scene.motion.error_bar:
         scalars["reconnect_time_error"] = integration_error(recon, tight)
     if tight is not None:
-        notes.append(f"reconnect_time error bar from a second run at motion.tolerance = "
-                     f"{scene.motion.tolerance / ERROR_BAR_TIGHTENING:g}: {tight!r} s there")
+        notes.append(f"reconnect_time error bar from a second run at {tighter_words}: {tight!r} s there")
     if scene.motion.mesh_error_bar:
         scalars["reconnect_time_mesh_error"] = mesh_error(recon, finer)
     elif math.isfinite(recon) and recon > 0.0:
@@ -325,12 +326,13 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     opened = level_events(levels, resistance, threshold, min_duration)
     relative = level_events(levels, resistance, scene.motion.reconnect_factor * rest, min_duration)
     scalars |= event_scalars(opened, relative)
+    reconnected_at = math.nan if history.rest_from is None else history.rest_from + recon  # s since t = 0
     if history.rest_from is not None:
-        scalars["reconnect_time_jumps"] = jumps_before(jumps, history.rest_from + recon)
+        scalars["reconnect_time_jumps"] = jumps_before(jumps, reconnected_at)
         shared = jump_share_note(scalars["reconnect_time_jumps"], recon, scene.motion.tolerance)
         if shared:
             notes.append(shared)
-    located = {"the reconnection": history.rest_from + recon} if math.isfinite(recon) else {}
+    located = {"the reconnection": reconnected_at} if math.isfinite(recon) else {}
     for k, event in enumerate(opened.events, start=1):
         located |= {f"event {k}'s start": event.start, f"event {k}'s end": event.end}
     inside = times_within_jumps(jumps, located)
@@ -352,7 +354,7 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     notes.append(f"open threshold {threshold:g} ohm (interface.open_resistance, default {threshold:g})")
     notes.append(f"cavitation: {scene.effects.cavitation} (Swift-Stieber is not mass-conserving where a film re-forms)")
     if history.rest_from is not None:
-        band = band_note(scene, series_t, rows, history.rest_from + recon)
+        band = band_note(scene, series_t, rows, reconnected_at)
         if band:
             notes.append(band)
     series = series_dataset(scene, series_t, rows, scalars, "; ".join(notes), peaks, opened)
