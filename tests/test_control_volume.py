@@ -67,6 +67,38 @@ def test_slopes_are_the_derivatives_and_apply_transpose_matrix_agree(shape, half
     np.testing.assert_allclose(means.transpose(w).ravel(), jacobian.T @ w.ravel(), atol=1e-14)
 
 
+def brute_force_cells(film: np.ndarray) -> np.ndarray:
+    """Each node's mean of the frozen expected gap over its 2-D cell (half cells at the edges)
+    of the film interpolated bilinearly between nodes, by a fine 2-D trapezoidal rule."""
+    ny, nx = film.shape
+    means = np.empty(film.shape)
+    for j in range(ny):
+        t = np.linspace(max(j - 0.5, 0.0), min(j + 0.5, ny - 1.0), 401)
+        for i in range(nx):
+            s = np.linspace(max(i - 0.5, 0.0), min(i + 0.5, nx - 1.0), 401)
+            rows = np.array([np.interp(s, np.arange(nx), row) for row in film])  # along x on every row
+            grid = np.array([np.interp(t, np.arange(ny), column) for column in rows.T]).T  # then along y
+            inner = np.trapezoid(frozen_gaussian_content(grid)[0], s, axis=1)
+            means[j, i] = np.trapezoid(inner, t) / ((s[-1] - s[0]) * (t[-1] - t[0]))
+    return means
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "known first-order error, found in the twenty-ninth session: a 2-D cell's content is the mean of its "
+    "x and y means through the node, so a film that varies along x alone (an uncrowned cylinder's) gets "
+    "half the nodal value's error at the kink (the y mean of a flat film is the node's value); taking "
+    "the x means alone moved the Table 1 stop on 51 x 51 from 12.24 to 13.12 ms (bench/EXPERIMENTS.md)"))
+@pytest.mark.parametrize("half_cells", HALF_CELLS.values(), ids=HALF_CELLS.keys())
+def test_a_2d_cell_of_a_film_varying_along_x_alone_holds_its_true_mean(half_cells):
+    """Truth: the 2-D cell mean of the bilinear film by brute force; for a film flat along y it
+    is each row's line mean, which the same law's line cells get right (the test above)."""
+    row = np.random.default_rng(3).normal(0.3, 1.0, 7)  # films across the kink at h = 0
+    film = np.tile(row, (5, 1))
+    truth = brute_force_cells(film)
+    np.testing.assert_allclose(truth, np.tile(brute_force_line(row), (5, 1)), atol=1e-5)  # the truth itself
+    np.testing.assert_allclose(control_volume_mean(film, half_cells).value, truth, atol=1e-5)
+
+
 def test_a_linear_law_gives_the_consistent_mass_and_a_lumped_one_the_nodal_value():
     film = np.array([[3.0, 1.0, 2.0, 6.0]])
     linear = control_volume_mean(film, GaussHalfCells(lambda h: (h, np.ones_like(h)), -100.0))
