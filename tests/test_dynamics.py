@@ -9,7 +9,10 @@ import numpy as np
 import pytest
 
 import lubecontact as lc
+from lubecontact.cli.main import main
 from lubecontact.unsteady.dynamics import BaseExcitation, Dynamics
+from lubecontact.unsteady.motion import SpeedHistory
+from lubecontact.unsteady.transient import reconnection_start
 
 TABLE1 = "config/scenes/table1.yaml"
 # Table 1 dry, at rest, as a 51-node line contact (elastic, rough)
@@ -163,3 +166,55 @@ def test_a_vibration_needing_too_many_steps_is_refused():
         lc.transient(lc.load_scene(TABLE1, {**DRY_LINE, "motion.mass": 1e-3, "motion.vibration": "random",
                                             "motion.vibration_acceleration": 10.0, "motion.vibration_frequency": 500.0,
                                             "motion.vibration_frequency_end": 100.0}), progress=False)
+
+
+# the shock figure's 100 g case (config/transient.yaml figures.shock) as a rigid 31-node line:
+# the preload (0.5 N) over the mass (1 g) is 51 g, so the shock lifts the contact
+LIFTED = {"mesh.ny": 1, "mesh.nx": 31, "effects.elastic_deformation": False, "operating.speed": 0.0,
+          "operating.force": 0.5, "motion.kind": "steady", "motion.duration": 0.05, "motion.mass": 1e-3,
+          "motion.spring_stiffness": 2000.0, "motion.vibration": "half_sine_shock", "motion.shock_duration": 0.011,
+          "motion.vibration_acceleration": -100 * 9.80665, "motion.tolerance": 1e-2}
+
+
+def test_a_shocks_reconnect_time_counts_from_its_end_and_ends_its_relative_event():
+    """Timed from t = 0 the reconnect time of a contact closed at the start read 0, however
+    long the shock then held it open. Counted from the shock's end (transient.reconnection_start)
+    it is where the one event above reconnect_factor x rest_resistance ends, located on its
+    own (events.py)."""
+    ds = lc.transient(lc.load_scene(TABLE1, LIFTED), progress=False)
+    assert ds["converged"].item() == 1 and ds["relative_event_count"].item() == 1 and ds["event_count"].item() >= 1
+    recon, threshold = ds["reconnect_time"].item(), ds["relative_threshold"].item()
+    t, r = ds["time"].values, ds["contact_resistance"].values
+    shock_end = LIFTED["motion.shock_duration"]
+    assert r[0] <= threshold and r[np.searchsorted(t, shock_end)] > threshold  # closed at first, open as it ends
+    last_above = np.flatnonzero(r > threshold)[-1]
+    assert recon > 0.0 and t[last_above] <= shock_end + recon <= t[last_above + 1]
+
+
+@pytest.mark.parametrize("overrides, expected", [
+    ({"motion.kind": "stop", "operating.speed": 1.0, "motion.vibration": "none"}, 1e-3),  # the stop's rest
+    ({"motion.kind": "stop", "operating.speed": 1.0, "motion.ramp": 1e-3}, 0.011),  # the shock ends later
+    ({"motion.kind": "stop", "operating.speed": 1.0, "motion.ramp": 0.02}, 0.02),  # the stop ends later
+    ({"operating.speed": 1.0}, None),  # sliding on: no rest
+    ({"motion.vibration": "sine"}, None),  # shaken to the end
+])
+def test_a_reconnection_is_timed_from_the_later_of_the_rest_and_the_shocks_end(overrides, expected):
+    scene = lc.load_scene(TABLE1, {**LIFTED, **overrides})
+    assert reconnection_start(SpeedHistory.from_scene(scene), BaseExcitation.from_scene(scene)) == expected
+
+
+@pytest.mark.parametrize("vibration, expected", [("none", 0.0), ("half_sine_shock", 0.011), ("sine", None),
+                                                 ("sine_sweep", None), ("random", None)])
+def test_the_base_is_quiet_after_a_shock_and_never_under_a_vibration(vibration, expected):
+    scene = lc.load_scene(TABLE1, {**LIFTED, "motion.vibration": vibration})
+    assert BaseExcitation.from_scene(scene).quiet_from() == expected
+
+
+def test_the_summary_says_from_when_a_reconnection_is_timed_and_why_a_vibration_has_none(capsys, tmp_path):
+    shock = ["transient", TABLE1, *[f"--set={k}={v}" for k, v in LIFTED.items()], "--out", str(tmp_path / "s.nc")]
+    assert main(shock) == 0
+    assert "reconnect_time: counted from t = 0.011 s, when the block is at rest and the shock over" in capsys.readouterr().out
+    shaken = {**LIFTED, "motion.vibration": "sine", "motion.vibration_frequency": 200.0, "motion.duration": 0.01}
+    assert main(["transient", TABLE1, *[f"--set={k}={v}" for k, v in shaken.items()], "--out", str(tmp_path / "v.nc")]) == 0
+    out = capsys.readouterr().out
+    assert "reconnect_time = nan: motion.vibration = sine shakes the base to the end of the run" in out

@@ -78,6 +78,19 @@ def test_the_mesh_error_bar_brackets_the_actual_mesh_error():
     assert "mesh at rest twice as fine" in ds.attrs["notes"]
 
 
+def test_the_second_run_stops_at_its_reconnection_with_the_whole_runs_reconnect_time():
+    """The mesh error bar's second run ends at its first level at rest below its threshold
+    (transient.second_reconnect_time): its reconnect time is that of the finer scene run to
+    its end by lc.transient, to the last digit."""
+    scene = lc.load_scene(TABLE1, {**STOP, "motion.tolerance": 1e-2, "motion.mesh_error_bar": True})
+    ds = lc.transient(scene, progress=False)
+    whole = lc.transient(finer_mesh_scene(scene)[0], progress=False)["reconnect_time"].item()
+    assert whole < scene.motion.duration - scene.motion.ramp  # the whole run goes on after it
+    assert f"{whole!r} s there" in ds.attrs["notes"]
+    assert ds["reconnect_time_mesh_error"].item() == pytest.approx(2.0 * (whole - ds["reconnect_time"].item()),
+                                                                   rel=1e-12)
+
+
 def test_the_finer_mesh_is_the_mesh_at_rest_or_on_an_explicit_domain_the_whole_mesh():
     auto = lc.load_scene(TABLE1, {**LINE_STOP, "motion.rest_refinement": 3})
     finer, words = finer_mesh_scene(auto)

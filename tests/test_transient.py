@@ -465,6 +465,18 @@ def test_at_rest_a_stop_steps_on_the_mesh_at_rest():
     assert np.isfinite(dense_resistance(levels)(switch, midway))
 
 
+def test_a_run_ends_at_the_first_level_its_until_holds_for_and_is_the_whole_run_up_to_there():
+    """TimeIntegrator.run(until=...): no failure, the first accepted level at or past the
+    time asked for is the last, and every level before it is the whole run's."""
+    scene = line_stop()
+    history = SpeedHistory.from_scene(scene)
+    whole, _ = integrator.TimeIntegrator(scene, history).run()
+    levels, failure = integrator.TimeIntegrator(scene, history).run(until=lambda level: level.time >= 2e-3)
+    assert failure == "" and levels[-1].time >= 2e-3 > levels[-2].time
+    assert [level.time for level in levels] == [level.time for level in whole[:len(levels)]]
+    assert np.array_equal(levels[-1].state.film, whole[len(levels) - 1].state.film)
+
+
 def test_a_refined_mesh_at_rest_gives_the_reconnect_time_of_a_refined_mesh():
     """The reconnect time's mesh error is made at rest, where the film drains from the contact
     (docs/physics.md section 14, "The mesh at rest"): the Table 1 line stop on 61 nodes with

@@ -45,6 +45,8 @@ import numpy as np
 # across a half-sine shock at least.
 STEPS_PER_VIBRATION_PERIOD = 40
 STEPS_PER_SHOCK = 20
+# base excitations that shake the contact to the end of the run (motion.vibration)
+CONTINUOUS_VIBRATIONS = ("sine", "sine_sweep", "random")
 
 
 @dataclass(frozen=True)
@@ -93,6 +95,13 @@ class BaseExcitation:
         """Hz: the fastest the excitation changes (0 for none, 1/(2T) for a shock)."""
         return {"none": 0.0, "sine": self.frequency, "half_sine_shock": 0.5 / self.duration}.get(self.kind,
                                                                                                self.frequency_end)
+
+    def quiet_from(self) -> float | None:
+        """The instant from which the base stands still (s): 0 without an excitation, the end
+        of a half-sine shock, None for the CONTINUOUS_VIBRATIONS, which last the whole run."""
+        if self.kind in CONTINUOUS_VIBRATIONS:
+            return None
+        return self.duration if self.kind == "half_sine_shock" else 0.0
 
     def breakpoints(self) -> list[float]:
         """Instants where a_b(t) is not smooth (steps land on them)."""

@@ -660,9 +660,11 @@ class TimeIntegrator:
             self.rejected += 1
         return None
 
-    def run(self, progress: bool = False, report=None):
+    def run(self, progress: bool = False, report=None, until=None):
         """(levels, failure message or ''): accepted levels from t = 0 to the motion's end,
-        or up to where the run stopped: a step that failed MAX_FAILED_IN_A_ROW times, below
+        or to the first accepted level for which ``until`` (a callable taking a level, None:
+        never) holds, a run that needs no more (transient.second_reconnect_time: a second run
+        that only times the reconnection), or up to where the run stopped: a step that failed MAX_FAILED_IN_A_ROW times, below
         MIN_STEP or below motion.tolerance times the step the error test last asked for (see
         MAX_FAILED_IN_A_ROW), unless a pocket seals there and a jump over its impasse
         converges (jump_over_impasse), MAX_STEPS, or an interruption (KeyboardInterrupt,
@@ -700,9 +702,10 @@ class TimeIntegrator:
         decade = FIRST_STEP  # the next power of ten of simulated time to report
         bar = tqdm(total=history.end, unit="s", desc="transient", disable=not progress,
                    bar_format="{l_bar}{bar}| t = {n:.3g} of {total:.3g} s [{elapsed}] {postfix}")
+        reached = False  # until held for the last accepted level
         try:
             with bar:
-                while levels[-1].time < history.end and len(levels) < MAX_STEPS:
+                while not reached and levels[-1].time < history.end and len(levels) < MAX_STEPS:
                     t = levels[-1].time
                     target = next(b for b in breaks if b > t)
                     if history.rest_from is None or t < history.rest_from:
@@ -744,6 +747,7 @@ class TimeIntegrator:
                                 # (a jump is at least 4 times motion.tolerance times it, so the
                                 # next jump needs the error test to shorten the steps again)
                                 asked, longest = dt, dt if longest is None else max(longest, dt)
+                                reached = until is not None and until(jump)
                                 continue
                             if pocket:
                                 outcome += (f"; a pocket of the film is sealing at {pocket}: there the state must "
@@ -794,9 +798,10 @@ class TimeIntegrator:
                         asked = dt
                         longest = dt if longest is None else max(longest, dt)
                     solve_failed = False
+                    reached = until is not None and until(level)
         except KeyboardInterrupt:
             failure = f"interrupted at t = {levels[-1].time:.6g} s: the series up to there"
-        if not failure and levels[-1].time < history.end:
+        if not failure and not reached and levels[-1].time < history.end:
             failure = f"stopped after {MAX_STEPS} steps at t = {levels[-1].time:.6g} s"
         self.wall_time = time.perf_counter() - started
         return levels[1:], failure

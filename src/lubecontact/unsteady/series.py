@@ -38,8 +38,9 @@ SERIES = {
     "valid": CASE["valid"],
 }
 SCALARS = {
-    "reconnect_time": ("s", "time after the motion stops until contact_resistance first falls to "
-                            "reconnect_factor x the resistance at rest (inf: not within duration)"),
+    "reconnect_time": ("s", "time after the motion stops and a shock ends until contact_resistance first falls to "
+                            "reconnect_factor x the resistance at rest (inf: not within duration; nan: the motion or "
+                            "a vibration never ends)"),
     "rest_resistance": ("ohm", "contact resistance of the contact at rest (steady, no fluid pressure)"),
     "open_resistance": ("ohm", "resistance above which the contact counts as open"),
     "converged": ("1", "1 if every step converged and the run reached its end"),
