@@ -134,6 +134,17 @@ def test_decimal_numbers_still_read(capsys):
     assert code == 0 and "speed: 0.01" in out and "nx: 21" in out
 
 
+@pytest.mark.parametrize("command", [["solve"], ["sweep", "--speeds", "0.1,1"]])
+def test_a_motion_given_to_solve_or_sweep_is_said_to_be_ignored(tmp_path, capsys, command):
+    """A newcomer's `solve` of a stop scene solved the steady point without a word."""
+    code, _, err = run(capsys, command[0], SCENE, *command[1:], *TINY, "--set", "motion.kind=stop",
+                       "--out", str(tmp_path / "a.nc"))
+    assert code == 0 and f"motion.kind = stop is a motion in time, which `lubecontact transient` follows; " \
+        f"`{command[0]}` solves the steady point at operating.speed" in err
+    code, _, err = run(capsys, command[0], SCENE, *command[1:], *TINY, "--out", str(tmp_path / "b.nc"))
+    assert code == 0 and "motion in time" not in err
+
+
 def test_empty_scene_says_how_to_ask_for_table_1(tmp_path, capsys):
     empty = tmp_path / "empty.yaml"
     empty.write_text("")

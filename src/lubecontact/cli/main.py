@@ -218,6 +218,10 @@ def _run(args) -> int:
 
     for warning in scene_warnings(scene):
         print(f"lubecontact: warning: {warning}", file=sys.stderr)
+    if args.command in ("solve", "sweep") and scene.motion.kind != "steady":
+        print(f"lubecontact: warning: motion.kind = {scene.motion.kind} is a motion in time, which "
+              f"`lubecontact transient` follows; `{args.command}` solves the steady point at operating.speed "
+              "and reads no motion.* key", file=sys.stderr)
     if args.command == "show":
         if scene.motion.kind != "steady":  # what `lubecontact transient` would refuse of this scene
             from lubecontact.unsteady.motion import motion_problems
