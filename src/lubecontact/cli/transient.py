@@ -8,9 +8,9 @@ import sys
 from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_NOT_CONVERGED, EXIT_OK
 from lubecontact.io.case_schema import write_case
 from lubecontact.scene import SceneError
-from lubecontact.unsteady.dynamics import CONTINUOUS_VIBRATIONS, BaseExcitation
+from lubecontact.unsteady.dynamics import BaseExcitation
 from lubecontact.unsteady.motion import SpeedHistory
-from lubecontact.unsteady.transient import MESH_ERROR_UNSEEN, reconnection_start, transient
+from lubecontact.unsteady.transient import MESH_ERROR_UNSEEN, no_reconnection_note, reconnection_start, transient
 
 SUMMARY = ("reconnect_time", "rest_resistance", "open_fraction", "steps", "rejected_steps", "coupled_solves", "solve_time")
 
@@ -46,13 +46,10 @@ def explained(ds, scene) -> list[str]:
     lines = []
     motion, ended = scene.motion, ds["converged"].item() != 1
     reconnect, fraction = ds["reconnect_time"].item(), ds["open_fraction"].item()
-    since = reconnection_start(SpeedHistory.from_scene(scene), BaseExcitation.from_scene(scene))
+    history = SpeedHistory.from_scene(scene)
+    since = reconnection_start(history, BaseExcitation.from_scene(scene))
     if math.isnan(reconnect):
-        why = "the run ended before the contact reconnected" if ended else (
-            f"motion.kind = {motion.kind} never comes to rest: there is no reconnection to time" if since is None and
-            motion.vibration not in CONTINUOUS_VIBRATIONS else
-            f"motion.vibration = {motion.vibration} shakes the base to the end of the run: there is no reconnection to "
-            "time (the events below give the open intervals)")
+        why = "the run ended before the contact reconnected" if ended else no_reconnection_note(scene, history)
         lines.append(f"  reconnect_time = nan: {why}")
     elif motion.vibration == "half_sine_shock" and since is not None:
         lines.append(f"  reconnect_time: counted from t = {since:.6g} s, when the block is at rest and the shock over")

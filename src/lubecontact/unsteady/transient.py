@@ -181,9 +181,10 @@ def reconnection_start(history, base) -> float | None:
 def no_reconnection_note(scene, history) -> str:
     """Why a run has no reconnection to time (reconnection_start is None), in words."""
     if history.rest_from is None:
-        return f"motion.kind = {scene.motion.kind}: the motion never stops, reconnect_time is NaN"
-    return (f"motion.vibration = {scene.motion.vibration} shakes the base to the end of the run: reconnect_time, "
-            "counted from when the motion and the excitation have ended, is NaN (the events give the open intervals)")
+        return f"motion.kind = {scene.motion.kind} never comes to rest: there is no reconnection to time"
+    return (f"motion.vibration = {scene.motion.vibration} shakes the base to the end of the run: there is no "
+            "reconnection to time (reconnect_time counts from when the motion and the excitation have ended; the "
+            "events give the open intervals)")
 
 
 def second_reconnect_time(scene, history, since: float, progress: bool, rest: float | None = None) -> float:
