@@ -176,6 +176,10 @@ def test_a_real_lift_off_is_drawn_with_its_events():
     np.testing.assert_allclose([(b.x0, b.x1) for b in spans], np.c_[ds["event_start"].values, ends] * 1e3)
     marked, = [line for line in middle.get_lines() if line.get_marker() == "^" and len(line.get_xdata())]
     assert len(marked.get_xdata()) == np.isinf(ds["contact_resistance"].values).sum()
+    # the legend says when it came back, counted from the shock's end (11 ms)
+    recon = ds["reconnect_time"].item()
+    assert 0.0 < recon and any(f"reconnected {recon * 1e3:.3g} ms after the shock" in text.get_text()
+                               for text in middle.get_legend().get_texts())
 
 
 @pytest.mark.parametrize("overrides", [None, "config/test.yaml"])

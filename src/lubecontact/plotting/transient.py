@@ -220,12 +220,16 @@ def shock_figure(cases: list[tuple[str, object]], title: str) -> Figure:
 
 
 def _events_text(ds) -> str:
-    """A curve's discontinuity events in words: how many and their total open time."""
+    """A curve's discontinuity events in words: how many, their total open time, and, where
+    the series has one, its reconnection after the shock (reconnect_time, counted from the
+    shock's end: unsteady/transient.reconnection_start)."""
     count = int(ds["event_count"])
     if count == 0:
         return "no event"
     still = " (still open at the end)" if bool(ds["event_open_at_end"].values[-1]) else ""
-    return f"{count} event(s), open {float(ds['event_open_time']) * 1e3:.3g} ms in all{still}"
+    recon = float(ds["reconnect_time"]) if "reconnect_time" in ds else math.nan
+    back = f", reconnected {recon * 1e3:.3g} ms after the shock" if math.isfinite(recon) and recon > 0.0 else ""
+    return f"{count} event(s), open {float(ds['event_open_time']) * 1e3:.3g} ms in all{still}{back}"
 
 
 def _contact_text(scene) -> str:
