@@ -567,8 +567,19 @@ class TimeIntegrator:
         return content.value, content.frozen()
 
     def start(self) -> Level:
-        """The steady state at t = 0 (the motion's initial speed)."""
+        """The steady state at t = 0 (the motion's initial speed). A motion that starts sliding
+        backwards (a table whose first speed is negative) starts with its fluid (the steady
+        solve took U < 0 for no sliding, and started dry), on the automatic domain on
+        reversed_domain's mesh, whose inlet lies beyond x_max where its fluid comes from (on
+        the forward mesh the inlet was the outlet's 1.5 length scales): a table from -1 m/s
+        failed at 1 ns."""
         model = self.steady_model
+        if self.history.initial_speed() < 0.0:  # Model.assemble takes U < 0 as no sliding (a steady U is >= 0)
+            backward = self.reversed_domain()  # None on an explicit domain
+            if backward is not None:
+                self.step_model = backward
+            model = dataclasses.replace(backward or model, scene=scene_at(self.scene, self.history.initial_speed()),
+                                        hydrodynamic=bool(self.scene.effects.hydrodynamics))
         state, diag, _ = steady_solve(model)
         self.coupled_solves += 1
         transient = dataclasses.replace(model, hydrodynamic=bool(self.scene.effects.hydrodynamics))
