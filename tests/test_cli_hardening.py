@@ -145,6 +145,14 @@ def test_a_motion_given_to_solve_or_sweep_is_said_to_be_ignored(tmp_path, capsys
     assert code == 0 and "motion in time" not in err
 
 
+def test_a_sweep_from_rest_runs_and_names_every_effect_some_point_ran(tmp_path, capsys):
+    """At 0 m/s no hydrodynamics runs, so the points' effects_run differ; the sweep dropped
+    the attribute and ended in an internal error (KeyError)."""
+    code, out, err = run(capsys, "sweep", SCENE, "--speeds", "0,0.1", *TINY, "--out", str(tmp_path / "s.nc"))
+    assert code == 0 and "Traceback" not in err, err
+    assert "effects run: hydrodynamics," in out and "asperity_contact" in out
+
+
 def test_empty_scene_says_how_to_ask_for_table_1(tmp_path, capsys):
     empty = tmp_path / "empty.yaml"
     empty.write_text("")

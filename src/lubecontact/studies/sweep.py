@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Sequence
+from dataclasses import fields
 
 import numpy as np
 import xarray as xr
@@ -50,4 +51,13 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
     out.attrs["scene_hash"] = scene.hash
     out.attrs["note"] = "operating.speed of the scene is replaced by the speed coordinate"
     out.attrs["validity_notes"] = "\n".join(flagged)  # each point's flags (they differ: concat drops them)
+    out.attrs["effects_run"] = effects_run_by_any([ds.attrs["effects_run"] for ds in cases], scene)
     return out
+
+
+def effects_run_by_any(runs: Sequence[str], scene) -> str:
+    """The effects some point of a sweep ran (each point's ``effects_run``, a comma list), in
+    the order of the scene's effects: they differ where a speed of 0 runs no hydrodynamics,
+    and concat drops what differs (a sweep from 0 m/s ended in a KeyError)."""
+    ran = {name for run in runs for name in run.split(",") if name}
+    return ",".join(name for name in (f.name for f in fields(scene.effects)) if name in ran)
