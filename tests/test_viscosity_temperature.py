@@ -19,6 +19,7 @@ import math
 import pytest
 
 from lubecontact import load_scene
+from lubecontact.model.validity import scene_warnings
 from lubecontact.physics.viscosity_temperature import (
     WaltherLine,
     density,
@@ -158,6 +159,21 @@ def test_the_scene_viscosity_at_40_c_is_the_datasheet_value_times_the_density():
     scene = load_scene(_scene(40.0))
     assert scene.lubricant.viscosity == pytest.approx(32.0e-6 * density(870.0, 40.0), rel=1e-12)
     assert scene.lubricant.viscosity == pytest.approx(32.0e-6 * 870.0 * (1 - 25 * 0.6278 / 870), rel=2e-3)
+
+
+@pytest.mark.parametrize("temperature, pour_point, warned", [(-60.0, None, True), (20.0, None, True),
+                                                          (-60.0, -70.0, False), (40.0, None, False)])
+def test_a_viscosity_extrapolated_below_the_datasheet_without_a_pour_point_is_warned_of(temperature, pour_point,
+                                                                                        warned):
+    """ASTM D341's line holds only above the pour point: below the datasheet's 40 C a scene
+    that gives none is warned of, naming the key (a VG 32 oil at -60 C had floated the contact
+    on 25 um of oil without a word)."""
+    extra = {} if pour_point is None else {"pour_point": pour_point}
+    notes = scene_warnings(load_scene(_scene(temperature, **extra)))
+    said = [note for note in notes if "give lubricant.pour_point" in note]
+    assert bool(said) == warned
+    if warned:
+        assert f"operating.temperature = {temperature:g} C is below the datasheet's 40 C" in said[0]
 
 
 def test_a_scene_without_the_keys_is_what_it_was():

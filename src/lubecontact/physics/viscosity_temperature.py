@@ -22,6 +22,9 @@ D341_HIGHEST_TEMPERATURE = 340.0
 # K1 = 0.34878 kg/m^3 per F at the 60 F base times 1.8.
 LUBE_OIL_K1 = 0.34878 * 1.8
 DENSITY_REFERENCE = 15.0  # C: the datasheet's density is at 15 C (ISO 12185, ASTM D4052)
+# C: the datasheet's two kinematic viscosities (ISO 3448 grades by the first); below the first
+# the Walther line is extrapolated, which D341 supports only above the oil's pour point
+DATASHEET_TEMPERATURES = (40.0, 100.0)
 
 
 def walther_z(nu: float) -> float:
@@ -69,5 +72,6 @@ def density(rho_15: float, t: float) -> float:
 
 def dynamic_viscosity(nu_40: float, nu_100: float, rho_15: float, t: float) -> float:
     """mu (Pa s) at t (C) of an oil with nu_40, nu_100 (mm^2/s) and rho_15 (kg/m^3)."""
-    nu = WaltherLine.through(40.0, nu_40, 100.0, nu_100).kinematic_viscosity(t)
+    (low, high) = DATASHEET_TEMPERATURES
+    nu = WaltherLine.through(low, nu_40, high, nu_100).kinematic_viscosity(t)
     return density(rho_15, t) * nu * 1e-6
