@@ -142,6 +142,18 @@ def test_anisotropic_surface_reported():
     assert not p.isotropic and any("anisotropic" in n for n in p.notes())
 
 
+def test_a_surface_steeper_than_45_degrees_is_noted_and_its_units_questioned():
+    """The RMS slope sqrt(m2) scales with the heights (test above): the same map read in um
+    where its heights are in mm is 1000 times as steep. The note names the keys to check; the
+    surface as measured has no such note."""
+    z = isotropic_surface(lambda q: rolled_power_law(q, 2e5, 1.5e6, 0.7), 64, 64e-6, seed=3, rms=0.5e-6)
+    gentle = parameters(spectral_moments(from_array(z, (64e-6, 64e-6))))
+    steep = parameters(spectral_moments(from_array(1e3 * z, (64e-6, 64e-6))))
+    assert math.sqrt(gentle.moments.m2_mean) < 1.0 < math.sqrt(steep.moments.m2_mean)
+    assert not any("RMS slope" in n for n in gentle.notes())
+    assert any(n.startswith("RMS slope") and "--unit" in n for n in steep.notes())
+
+
 def test_units_of_a_raw_matrix(tmp_path):
     z = isotropic_surface(lambda q: rolled_power_law(q, 2e5, 1.5e6, 0.7), 64, 64e-6, seed=9, rms=0.5e-6)
     np.savetxt(tmp_path / "um.txt", z * 1e6)

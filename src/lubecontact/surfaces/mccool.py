@@ -28,6 +28,10 @@ RADIUS_CONSTANT = 0.375  # R_peak = 0.375 sqrt(pi / m4)
 SUMMIT_VARIANCE_FACTOR = 0.8968  # sigma_s^2 = sigma^2 (1 - 0.8968 / alpha)
 GW_ALPHA_MIN = 2.0  # below: outside the Greenwood-Williamson picture (docs/physics.md section 18)
 ISOTROPY_TOLERANCE = 1.25  # gamma within [1/1.25, 1.25] is reported as isotropic (gamma = 1 flow factors)
+# RMS slope sqrt(m2) above which a surface is steeper than 45 degrees on average: the contact
+# models (GW, Jackson-Green asperities, Patir-Cheng's flow) are built on gentle slopes (engineering
+# surfaces: about 0.01 to 0.3); such a map is often heights and lengths read in different units
+STEEPEST_RMS_SLOPE = 1.0
 
 
 @dataclass(frozen=True)
@@ -60,6 +64,11 @@ class McCool:
             out.append(f"gamma = {self.gamma:.3g}: anisotropic; isotropic (gamma = 1) flow factors do not apply")
         if self.isotropic is None:
             out.append("a profile: isotropy assumed, not measured")
+        slope = math.sqrt(self.moments.m2_mean)
+        if slope > STEEPEST_RMS_SLOPE:
+            out.append(f"RMS slope {slope:.3g} > {STEEPEST_RMS_SLOPE:g} (steeper than 45 degrees on average): outside the "
+                       "gentle slopes the contact and flow models assume; check that heights and lengths are in the "
+                       "units given (--unit, --size)")
         return out
 
 
