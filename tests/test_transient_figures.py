@@ -182,6 +182,14 @@ def test_a_real_lift_off_is_drawn_with_its_events():
                                for text in middle.get_legend().get_texts())
 
 
+@pytest.mark.parametrize("empty", [{"values": []}, {"series": {"operating.force": []}}])
+def test_a_design_chart_of_no_case_is_refused_naming_the_figure_and_the_list(empty):
+    """An empty list drew empty axes without a word (a config's `values: []`)."""
+    spec = study.study_spec("config/transient.yaml", {"figures": {"reconnect": empty}})
+    with pytest.raises(ValueError, match=r"transient figure 'reconnect': '(values|series operating.force)' is empty"):
+        study.figure_cases(spec)
+
+
 @pytest.mark.parametrize("overrides", [None, "config/test.yaml"])
 def test_the_shock_study_plans_one_case_per_shock_by_its_scene(overrides):
     """Each shock is the scene of the study's set, the figure's set and its peak, named by its

@@ -50,7 +50,7 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
             out[name] = [{"label": curve["label"], "overrides": {**shared, **(curve.get("set") or {})}}
                          for curve in figure["curves"]]
         elif "x" in figure:
-            out[name] = _design_chart(figure)
+            out[name] = _design_chart(name, figure)
         elif is_ladder(figure):
             out[name] = ladder_cases(name, figure)
         else:
@@ -61,9 +61,14 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
     return out
 
 
-def _design_chart(chart: Mapping) -> list[dict]:
-    """The cases of a design chart: every x value for every series value."""
+def _design_chart(name: str, chart: Mapping) -> list[dict]:
+    """The cases of a design chart: every x value for every series value. ValueError where
+    either list is empty (a chart of no case drew empty axes without a word)."""
     (series_key, series_values), = chart["series"].items()
+    for what, values in (("values", chart["values"]), (f"series {series_key}", series_values)):
+        if not values:
+            raise ValueError(f"transient figure {name!r}: '{what}' is empty; a design chart needs at least one "
+                             "value on each")
     return [
         {"label": f"{key_words(series_key)} = {s:g} {key_units(series_key)}", "x": x, "series": s,
          "overrides": {**(chart.get("set") or {}), chart["x"]: x, series_key: s}}
