@@ -53,6 +53,12 @@ class WaltherLine:
         b = (y1 - y2) / (x2 - x1)
         return cls(a=y1 + b * x1, b=b)
 
+    @classmethod
+    def of_datasheet(cls, nu_40: float, nu_100: float) -> WaltherLine:
+        """The line through a datasheet's two points (DATASHEET_TEMPERATURES), nu in mm^2/s."""
+        (low, high) = DATASHEET_TEMPERATURES
+        return cls.through(low, nu_40, high, nu_100)
+
     def kinematic_viscosity(self, t: float) -> float:
         """nu (mm^2/s) at t (C)."""
         return viscosity_of_z(10.0 ** 10.0 ** (self.a - self.b * math.log10(t + KELVIN)))
@@ -72,6 +78,5 @@ def density(rho_15: float, t: float) -> float:
 
 def dynamic_viscosity(nu_40: float, nu_100: float, rho_15: float, t: float) -> float:
     """mu (Pa s) at t (C) of an oil with nu_40, nu_100 (mm^2/s) and rho_15 (kg/m^3)."""
-    (low, high) = DATASHEET_TEMPERATURES
-    nu = WaltherLine.through(low, nu_40, high, nu_100).kinematic_viscosity(t)
+    nu = WaltherLine.of_datasheet(nu_40, nu_100).kinematic_viscosity(t)
     return density(rho_15, t) * nu * 1e-6

@@ -33,7 +33,6 @@ import yaml
 
 from lubecontact.numerics.mesh import mesh_problems
 from lubecontact.physics.viscosity_temperature import (
-    DATASHEET_TEMPERATURES,
     D341_HIGHEST_TEMPERATURE,
     D341_LOWEST_VISCOSITY,
     KELVIN,
@@ -1032,8 +1031,7 @@ def _at_temperature(sections: dict, raw, problems: list[str]):
     too_viscous = (f"operating.temperature = {temperature!r}: the oil of this datasheet is too viscous there; allowed: "
                    f"a temperature where the derived lubricant.viscosity is {viscosity_rule.allowed}")
     try:
-        nu = WaltherLine.through(DATASHEET_TEMPERATURES[0], nu_40, DATASHEET_TEMPERATURES[1],
-                                 nu_100).kinematic_viscosity(temperature)
+        nu = WaltherLine.of_datasheet(nu_40, nu_100).kinematic_viscosity(temperature)
     except OverflowError:
         problems.append(too_viscous)
         return None

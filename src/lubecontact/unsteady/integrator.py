@@ -676,8 +676,8 @@ class TimeIntegrator:
         or to the first accepted level for which ``until`` (a callable taking a level, None:
         never) holds (transient.second_reconnect_time: a second run that only times the
         reconnection), or up to where the run stopped: a step that failed
-        MAX_FAILED_IN_A_ROW times, below MIN_STEP or below motion.tolerance times the step the error test last asked for (see
-        MAX_FAILED_IN_A_ROW), unless a pocket seals there and a jump over its impasse
+        MAX_FAILED_IN_A_ROW times, below MIN_STEP or below motion.tolerance times the step the
+        error test last asked for (see MAX_FAILED_IN_A_ROW), unless a pocket seals there and a jump over its impasse
         converges (jump_over_impasse), MAX_STEPS, or an interruption (KeyboardInterrupt,
         which a SIGTERM handler may raise), whose failure message starts with "interrupted". ``report``
         (a callable taking one line) hears each decade of simulated time reached (1e-6 s,
