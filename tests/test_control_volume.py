@@ -87,7 +87,8 @@ def brute_force_cells(film: np.ndarray) -> np.ndarray:
     "known first-order error, found in the twenty-ninth session: a 2-D cell's content is the mean of its "
     "x and y means through the node, so a film that varies along x alone (an uncrowned cylinder's) gets "
     "half the nodal value's error at the kink (the y mean of a flat film is the node's value); taking "
-    "the x means alone moved the Table 1 stop on 51 x 51 from 12.24 to 13.12 ms (bench/EXPERIMENTS.md)"))
+    "the x means alone moved the Table 1 stop on 51 x 51 from 12.24 to 13.12 ms; exact quarter cells (thirtieth "
+    "session) to 13.07 ms, not kept: 2.3x the CPU and a hard case failed at a sealing pocket (bench/EXPERIMENTS.md)"))
 @pytest.mark.parametrize("half_cells", HALF_CELLS.values(), ids=HALF_CELLS.keys())
 def test_a_2d_cell_of_a_film_varying_along_x_alone_holds_its_true_mean(half_cells):
     """Truth: the 2-D cell mean of the bilinear film by brute force; for a film flat along y it
