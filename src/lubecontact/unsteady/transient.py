@@ -202,16 +202,21 @@ def second_reconnect_time(scene, history, since: float, progress: bool, rest: fl
     if rest is None:
         rest = _rest_resistance(integrator)
     threshold = scene.motion.reconnect_factor * rest
+    resistances = {}  # level time -> its contact resistance, each level's computed once
+
+    def resistance_of(level) -> float:
+        if level.time not in resistances:
+            resistances[level.time] = instant(level.model, level.state)["contact_resistance"]
+        return resistances[level.time]
 
     def reconnected(level) -> bool:
-        return level.time >= since and instant(level.model, level.state)["contact_resistance"] <= threshold
+        return level.time >= since and resistance_of(level) <= threshold
 
     levels, failure = integrator.run(progress, report=None if progress else _to_stderr, until=reconnected)
     if failure:
         return math.nan
-    resistance = [instant(lv.model, lv.state)["contact_resistance"] for lv in levels]
     times = [lv.time for lv in levels]
-    return reconnect_time(times, resistance, since, threshold, dense_resistance(levels))
+    return reconnect_time(times, [resistance_of(lv) for lv in levels], since, threshold, dense_resistance(levels))
 
 
 def mesh_error(value: float, finer: float | None) -> float:
