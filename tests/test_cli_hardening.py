@@ -380,3 +380,22 @@ def test_a_huge_bad_value_is_not_echoed_whole(tmp_path, capsys):
     scene.write_text("lubricant: {viscosity: '" + "x" * 900_000 + "'}\n")
     err = refused_fast(capsys, "show", str(scene), needle="lubricant.viscosity")
     assert "characters left out" in err
+
+
+def test_out_refuses_the_scenes_surface_and_speed_table_before_solving(tmp_path, capsys, no_solve):
+    # found by a hostile run (thirtieth session): only the scene file was checked, and
+    # `solve` and `transient` replaced a measured surface and a speed table with netCDF, exit 0
+    (tmp_path / "surfaces").mkdir()
+    surface = tmp_path / "surfaces" / "ground.asc"
+    surface.write_bytes((ROOT / "config" / "surfaces" / "ground.asc").read_bytes())
+    scene = tmp_path / "scene.yaml"
+    scene.write_text("roughness: {surface: surfaces/ground.asc}\nmesh: {ny: 1}\n")
+    before = surface.read_bytes()
+    refused(capsys, "solve", str(scene), "--out", str(surface), needle="is also an input")
+    assert surface.read_bytes() == before
+    table = tmp_path / "speeds.txt"
+    table.write_text("0 1.0\n0.001 0.0\n")
+    moving = tmp_path / "moving.yaml"
+    moving.write_text("motion: {kind: table, table: speeds.txt, duration: 0.003}\nmesh: {ny: 1, nx: 31}\n")
+    refused(capsys, "transient", str(moving), "--out", str(table), needle="is also an input")
+    assert table.read_text() == "0 1.0\n0.001 0.0\n"

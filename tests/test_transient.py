@@ -307,7 +307,8 @@ def test_a_relative_table_file_is_read_beside_the_scene(tmp_path, monkeypatch):
 
 def test_a_transient_reports_progress_and_keeps_its_series_when_terminated(tmp_path):
     """Off a terminal a line per decade of simulated time reaches stderr; SIGTERM (or Ctrl-C)
-    ends the run with the series so far written, flagged, exit 130 (issue 29 item 3)."""
+    ends the run with the series so far written beside --out (NAME.interrupted.nc), flagged,
+    exit 130 (issue 29 item 3); --out, here an earlier result, is left as it was."""
     import signal
     import subprocess
     import sys
@@ -315,6 +316,7 @@ def test_a_transient_reports_progress_and_keeps_its_series_when_terminated(tmp_p
     import xarray as xr
 
     out = tmp_path / "series.nc"
+    out.write_bytes(b"an earlier complete result")
     cmd = [sys.executable, "-m", "lubecontact.cli.main", "transient", TABLE1, "--set", "mesh.nx=31", "--set", "mesh.ny=1",
            "--set", "motion.kind=stop", "--set", "motion.duration=10", "--set", "motion.tolerance=1e-5", "--out", str(out)]
     run = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -324,10 +326,11 @@ def test_a_transient_reports_progress_and_keeps_its_series_when_terminated(tmp_p
         if "t = 1e-04 s of 10 s reached" in line:
             run.send_signal(signal.SIGTERM)
             break
-    rest, _ = run.communicate(timeout=120)
-    assert run.returncode == 130, "".join(seen) + rest
+    rest, last = run.communicate(timeout=120)
+    assert run.returncode == 130, "".join(seen) + rest + last
     assert [line.split(" s of")[0].split("= ")[1] for line in seen] == ["1e-09", "1e-08", "1e-07", "1e-06", "1e-05", "1e-04"]
-    with xr.open_dataset(out) as ds:
+    assert out.read_bytes() == b"an earlier complete result" and "--out was not written" in last
+    with xr.open_dataset(tmp_path / "series.interrupted.nc") as ds:
         assert ds.attrs["interrupted"] == 1 and ds["converged"].item() == 0 and "interrupted at t =" in ds.attrs["notes"]
         assert ds["time"].size > 10 and ds["time"].values[-1] >= 1e-4
 

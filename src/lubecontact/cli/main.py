@@ -1,7 +1,8 @@
 """Command line: ``lubecontact solve|sweep|transient|show|roughness``. Exit codes: 0 converged; 2 bad input
 (scene, option, --out path, a solve too big for this machine: nothing is solved or written);
 3 no converged result (not converged: the file is still written, with converged = 0; or
-the file could not be written); 130 interrupted (nothing written); 1 internal error (a bug:
+the file could not be written); 130 interrupted (nothing written to --out; a transient's
+series so far goes to NAME.interrupted.nc beside it); 1 internal error (a bug:
 the traceback is saved to a file named in the message)."""
 
 from __future__ import annotations
@@ -158,7 +159,7 @@ def _checked(args, scene, points: int):
     from lubecontact.model import resources
 
     try:
-        out = check_output_path(args.out, inputs=[args.scene])
+        out = check_output_path(args.out, inputs=[args.scene, *scene.input_files()])
     except OutputPathError as err:
         raise _BadInput(str(err)) from None
     est = resources.estimate(scene, points)

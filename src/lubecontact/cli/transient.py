@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import sys
+from pathlib import Path
 
 from lubecontact.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_NOT_CONVERGED, EXIT_OK
 from lubecontact.io.case_schema import write_case
@@ -103,12 +104,20 @@ def events_summary(ds, scene) -> list[str]:
     return lines
 
 
-def run_transient(scene, out) -> int:
+def interrupted_path(out: Path) -> Path:
+    """Where an interrupted transient writes its series so far: beside ``out`` (NAME.nc ->
+    NAME.interrupted.nc), never over it, so --out keeps the last complete run's result."""
+    return out.with_name(f"{out.stem}.interrupted{out.suffix}")
+
+
+def run_transient(scene, out: Path) -> int:
     try:
         ds = transient(scene)
     except SceneError as err:
         print(f"lubecontact: bad input:\n{err}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    if ds.attrs["interrupted"]:
+        out = interrupted_path(out)
     try:
         write_case(ds, out)
     except OSError as err:
@@ -119,7 +128,7 @@ def run_transient(scene, out) -> int:
     print(f"wrote {out}")
     if ds.attrs["interrupted"]:
         print(f"lubecontact: interrupted; the series up to t = {ds['time'].values[-1]:.6g} s is in {out} "
-              "(converged = 0)", file=sys.stderr)
+              "(converged = 0); --out was not written", file=sys.stderr)
         return EXIT_INTERRUPTED
     if ds["converged"].item() != 1:
         print(f"lubecontact: the transient did NOT converge: {ds.attrs['notes']}", file=sys.stderr)

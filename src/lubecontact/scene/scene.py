@@ -647,6 +647,8 @@ class Motion(_Section):
         "per metre along x of the motion's mesh (automatic domain only; docs/physics.md section 14)",
     )
 
+    table_file: str | None = field(default=None, compare=False)  # the file motion.table was read from
+
     # keys added after scenes were written: left out at their defaults (to_dict), so no hash changes
     LATER_KEYS = ("mass", "spring_stiffness", "vibration", "vibration_acceleration", "vibration_frequency",
                   "vibration_frequency_end", "vibration_seed", "shock_duration", "rest_refinement", "error_norm",
@@ -681,6 +683,16 @@ class Scene:
     mesh: MeshSettings = field(default_factory=MeshSettings)
     solver: SolverSettings = field(default_factory=SolverSettings)
     motion: Motion = field(default_factory=Motion)
+
+    def input_files(self) -> tuple[str, ...]:
+        """The data files the scene was read from besides its own: a measured surface
+        (roughness.surface) and a speed table (motion.table), which no output may replace."""
+        files = []
+        if self.roughness.surface is not None:
+            files.append(str(Path(self.roughness.directory) / self.roughness.surface))
+        if self.motion.table_file is not None:
+            files.append(self.motion.table_file)
+        return tuple(files)
 
     def to_dict(self) -> dict:
         """Plain Python types; ``auto`` where the scene says auto; default sections that
@@ -925,6 +937,13 @@ def _table_beside_scene(raw: Mapping, directory: str) -> Mapping:
     return {**raw, "motion": {**motion, "table": str(Path(directory) / motion["table"])}}
 
 
+def _with_table_file(motion, raw):
+    """The motion section with the file its table was read from (Motion.table_file)."""
+    if motion is None or not isinstance(raw, Mapping) or not isinstance(raw.get("table"), str):
+        return motion
+    return replace(motion, table_file=raw["table"])
+
+
 def _surface_replaces(raw, overrides: Mapping):
     """An override of roughness.surface replaces sigma, eta and R_peak of the scene it
     overrides (they come from the file); overriding them as well is still refused."""
@@ -1149,6 +1168,7 @@ def load_scene(path_or_mapping, overrides: Mapping | None = None) -> Scene:
     directory = _directory(path_or_mapping)
     raw = _table_beside_scene(raw, directory)
     sections = {name: _build_section(name, raw.get(name), problems) for name in SECTIONS}
+    sections["motion"] = _with_table_file(sections["motion"], raw.get("motion"))
     sections["roughness"] = _measured(sections["roughness"], raw.get("roughness"), directory, problems)
     sections["lubricant"] = _at_temperature(sections, raw.get("lubricant"), problems)
     problems.extend(_cross_problems(sections))
