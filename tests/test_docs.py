@@ -67,6 +67,24 @@ def test_the_citation_parser_reads_what_the_code_writes():
     assert cited_sections("(docs/physics.md sections 2 and 18)") == {2, 18}
 
 
+DOCS = [ROOT / "README.md", ROOT / "config" / "README.md", ROOT / "bench" / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+
+
+def test_every_import_the_docs_show_resolves():
+    # found by a hostile run (thirtieth session): the README showed `from lubecontact.solver
+    # import solve_case`, a module that no longer exists. Checked: `from lubecontact... import
+    # name` and `lc.name(` after `import lubecontact as lc`
+    shown = []
+    for doc in DOCS:
+        text = doc.read_text()
+        shown += re.findall(r"from\s+(lubecontact[\w.]*)\s+import\s+(\w+)", text)
+        shown += [("lubecontact", name) for name in re.findall(r"\blc\.(\w+)\(", text)]
+    assert len(shown) >= 5
+    code = "; ".join(f"import {module}; getattr({module}, {name!r})" for module, name in sorted(set(shown)))
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+
+
 def test_the_scene_keys_table_in_config_readme_is_current():
     """config/README.md's table of scene keys is written from the schema; a key added,
     renamed or given another default without rewriting it fails here."""
