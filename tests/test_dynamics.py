@@ -218,3 +218,21 @@ def test_the_summary_says_from_when_a_reconnection_is_timed_and_why_a_vibration_
     assert main(["transient", TABLE1, *[f"--set={k}={v}" for k, v in shaken.items()], "--out", str(tmp_path / "v.nc")]) == 0
     out = capsys.readouterr().out
     assert "reconnect_time = nan: motion.vibration = sine shakes the base to the end of the run" in out
+
+
+@pytest.mark.parametrize("overrides, why, end", [
+    ({"motion.kind": "stop", "motion.ramp": 1.0, "motion.duration": 0.005}, "the block comes to rest at t = 1 s", 0.005),
+    ({"operating.speed": 0.0, "motion.mass": MASS, "motion.vibration": "half_sine_shock",
+      "motion.vibration_acceleration": -3000.0, "motion.shock_duration": 1e-3, "motion.duration": 1e-4},
+     "the half-sine shock ends at t = 0.001 s", 1e-4),
+    ({"motion.kind": "oscillation", "motion.amplitude": 1e-4, "motion.frequency": 100.0, "motion.cycles": 3,
+      "motion.duration": 0.005}, "the block comes to rest at t = 0.03 s", 0.03),
+], ids=["ramp outlasts the run", "shock outlasts the run", "cycles outlast motion.duration"])
+def test_a_run_that_ends_before_its_rest_has_no_reconnection_and_says_why(overrides, why, end):
+    # found by a hostile run (thirtieth session): each read reconnect_time = inf, "not
+    # reconnected within motion.duration", for a block that never rested within the run
+    scene = lc.load_scene(TABLE1, {"mesh.ny": 1, "mesh.nx": 31, **overrides})
+    ds = lc.transient(scene, progress=False)
+    assert ds["converged"].item() == 1 and math.isnan(ds["reconnect_time"].item())
+    assert f"{why}, not before the run ends" in ds.attrs["notes"]
+    assert ds["time"].values[-1] == pytest.approx(end)

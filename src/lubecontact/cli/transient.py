@@ -47,16 +47,17 @@ def explained(ds, scene) -> list[str]:
     lines = []
     motion, ended = scene.motion, ds["converged"].item() != 1
     reconnect, fraction = ds["reconnect_time"].item(), ds["open_fraction"].item()
-    history = SpeedHistory.from_scene(scene)
-    since = reconnection_start(history, BaseExcitation.from_scene(scene))
+    history, base = SpeedHistory.from_scene(scene), BaseExcitation.from_scene(scene)
+    since = reconnection_start(history, base)
     if math.isnan(reconnect):
-        why = "the run ended before the contact reconnected" if ended else no_reconnection_note(scene, history)
+        why = "the run ended before the contact reconnected" if ended else no_reconnection_note(scene, history, base)
         lines.append(f"  reconnect_time = nan: {why}")
     elif motion.vibration == "half_sine_shock" and since is not None:
         lines.append(f"  reconnect_time: counted from t = {since:.6g} s, when the block is at rest and the shock over")
     elif math.isinf(reconnect):
-        lines.append(f"  reconnect_time = inf: not reconnected within motion.duration = {motion.duration:g} s "
-                     f"(R stayed above {motion.reconnect_factor:g} x rest_resistance)")
+        lines.append(f"  reconnect_time = inf: not reconnected by the run's end at t = {history.end:.6g} s "
+                     f"(motion.duration = {motion.duration:g} s; R stayed above {motion.reconnect_factor:g} x "
+                     "rest_resistance)")
     if MESH_ERROR_UNSEEN in ds.attrs["notes"]:
         lines.append("  reconnect_time: its mesh error is not estimated (motion.mesh_error_bar: true), and on the "
                      "default mesh it is most of the error (docs/physics.md section 14)")

@@ -600,7 +600,7 @@ class Motion(_Section):
     speed: float | None = _field(None, _AutoOr(_nonnegative("m/s")), "sliding speed before a stop / after a start (auto: operating.speed)")
     stop_time: float = _field(0.0, _nonnegative("s"), "time the deceleration (stop) begins")
     ramp: float = _field(1.0e-3, _nonnegative("s"), "duration of the linear deceleration / acceleration")
-    duration: float = _field(10.0, _positive("s"), "simulated time after stop_time (after t = 0 for other kinds)")
+    duration: float = _field(10.0, _positive("s"), "simulated time after stop_time (after t = 0 for other kinds; an oscillation runs at least its cycles)")
     amplitude: float = _field(1.0e-4, _positive("m"), "oscillation: amplitude of the block's displacement")
     frequency: float = _field(10.0, _positive("Hz"), "oscillation: frequency")
     cycles: int = _field(3, _Integer(1), "oscillation: number of cycles, then rest")

@@ -171,20 +171,29 @@ def reconnection_start(history, base) -> float | None:
     BaseExcitation.quiet_from), None where either never comes (no reconnection to time). A
     connector struck by a shock while at rest opens during the shock, not at t = 0: timed
     from t = 0 its reconnect time read 0 for a contact open for 9.3 ms (the shock figure's
-    100 g case)."""
+    100 g case). None too where that instant is not before the run's end (history.end): a
+    stop whose ramp outlasts motion.duration had read "not reconnected" (inf) for a block
+    that never came to rest."""
     quiet = base.quiet_from()
     if history.rest_from is None or quiet is None:
         return None
-    return max(history.rest_from, quiet)
+    since = max(history.rest_from, quiet)
+    return since if since < history.end else None
 
 
-def no_reconnection_note(scene, history) -> str:
+def no_reconnection_note(scene, history, base) -> str:
     """Why a run has no reconnection to time (reconnection_start is None), in words."""
     if history.rest_from is None:
         return f"motion.kind = {scene.motion.kind} never comes to rest: there is no reconnection to time"
-    return (f"motion.vibration = {scene.motion.vibration} shakes the base to the end of the run: there is no "
-            "reconnection to time (reconnect_time counts from when the motion and the excitation have ended; the "
-            "events give the open intervals)")
+    quiet = base.quiet_from()
+    if quiet is None:
+        return (f"motion.vibration = {scene.motion.vibration} shakes the base to the end of the run: there is no "
+                "reconnection to time (reconnect_time counts from when the motion and the excitation have ended; "
+                "the events give the open intervals)")
+    what = (f"the block comes to rest at t = {history.rest_from:.6g} s" if history.rest_from >= quiet else
+            f"the half-sine shock ends at t = {quiet:.6g} s")
+    return (f"{what}, not before the run ends (t = {history.end:.6g} s): there is no time at rest in which to "
+            f"reconnect; lengthen motion.duration so that the run goes on past it")
 
 
 def second_reconnect_time(scene, history, since: float, progress: bool, rest: float | None = None) -> float:
@@ -325,7 +334,7 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     if failure:
         notes.append("NOT CONVERGED: " + failure)
     if since is None:
-        notes.append(no_reconnection_note(scene, history))
+        notes.append(no_reconnection_note(scene, history, integrator.base))
     scalars = {
         "rest_resistance": rest,
         "open_resistance": threshold,
