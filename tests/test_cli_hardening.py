@@ -112,7 +112,10 @@ def test_out_writes_through_a_symlink_and_keeps_it(tmp_path, capsys):
 
 @pytest.mark.parametrize(
     "speeds",
-    ["1e-4:10:0", "-1:1:3", "0:1:3", "1e-4:10:2.5", "0.1,nan", "0.1,-1", "inf", ",", "0x10", "1:2"],
+    # the last two, duplicated speeds, found by a hostile run (thirtieth session): the sweep's
+    # speed coordinate was not strictly monotonic, against CF
+    ["1e-4:10:0", "-1:1:3", "0:1:3", "1e-4:10:2.5", "0.1,nan", "0.1,-1", "inf", ",", "0x10", "1:2", "0.1,1,0.1",
+     "1:1:3"],
 )
 def test_bad_speeds_exit_2_naming_what_is_allowed(tmp_path, capsys, no_solve, speeds):
     err = refused(capsys, "sweep", SCENE, f"--speeds={speeds}", "--out", str(tmp_path / "s.nc"), needle="--speeds")
@@ -399,3 +402,10 @@ def test_out_refuses_the_scenes_surface_and_speed_table_before_solving(tmp_path,
     moving.write_text("motion: {kind: table, table: speeds.txt, duration: 0.003}\nmesh: {ny: 1, nx: 31}\n")
     refused(capsys, "transient", str(moving), "--out", str(table), needle="is also an input")
     assert table.read_text() == "0 1.0\n0.001 0.0\n"
+
+
+def test_the_sweep_api_refuses_a_speed_given_twice():
+    import lubecontact as lc
+
+    with pytest.raises(ValueError, match=r"each speed once: \[0.1\] listed twice"):
+        lc.sweep(lc.load_scene(SCENE), [0.1, 1.0, 0.1])

@@ -78,12 +78,17 @@ def parse_speeds(text: str) -> list[float]:
             if not (math.isfinite(start) and math.isfinite(stop) and start > 0 and stop > 0 and 1 <= n <= MAX_SPEEDS
                     and n.is_integer()):
                 raise ValueError("out of range")
+            if start == stop and n > 1:
+                raise ValueError("START = STOP gives the same speed N times")
             return np.geomspace(start, stop, int(n)).tolist()
         if text.count(",") >= MAX_SPEEDS:
             raise ValueError(f"more than {MAX_SPEEDS} speeds")
         speeds = [float(v) for v in text.split(",") if v.strip()]
         if not speeds or not all(math.isfinite(v) and v >= 0 for v in speeds):
             raise ValueError("empty, not finite or negative")
+        twice = sorted({v for v in speeds if speeds.count(v) > 1})
+        if twice:
+            raise ValueError(f"{', '.join(f'{v:g}' for v in twice)} listed more than once (each speed once)")
         return speeds
     except ValueError as err:
         raise ValueError(f"--speeds {shown!r}: {err}; {allowed}") from None

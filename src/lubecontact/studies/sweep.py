@@ -27,6 +27,8 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
     speeds = np.asarray(sorted(float(s) for s in speeds))
     if speeds.size == 0 or np.any(~np.isfinite(speeds)) or np.any(speeds < 0):
         raise ValueError(f"speeds must be finite and >= 0 m/s, got {speeds.tolist()}")
+    if np.any(np.diff(speeds) == 0):  # the speed coordinate must be strictly monotonic (CF)
+        raise ValueError(f"each speed once: {speeds[1:][np.diff(speeds) == 0].tolist()} listed twice")
     if progress is None:
         progress = sys.stderr.isatty()
     cases, flagged = [], []
