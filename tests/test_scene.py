@@ -301,6 +301,9 @@ def test_files(tmp_path):
     listing = tmp_path / "list.yaml"
     listing.write_text("- 1\n- 2\n")
     assert "mapping" in _error(listing)
+    latin = tmp_path / "latin1.yaml"  # a hostile run's (thirtieth session): the codec's words alone, no file
+    latin.write_bytes("operating:\n  speed: 0.1  # 20 \u00b0C\n".encode("latin-1"))
+    assert str(latin) in _error(latin) and "byte 0xb0 on line 2" in _error(latin) and "save the scene as UTF-8" in _error(latin)
 
 
 def test_parse_override():

@@ -788,7 +788,7 @@ def _read(source) -> tuple[object, str]:
                     f"the scene file is {size / 2**20:.3g} MB; allowed: at most {MAX_SCENE_BYTES / 2**20:g} MB "
                     "(a long speed history goes in a motion.table file)"
                 ])
-            text = path.read_text()
+            text = path.read_text(encoding="utf-8")
             brackets = text.count("[") + text.count("{")  # counted in C: the scan below only when it matters
             if brackets > MAX_FLOW_DEPTH and _flow_depth(text) > MAX_FLOW_DEPTH:  # libyaml crashes near 50 000
                 raise SceneError(str(path), [f"the YAML nests brackets deeper than {MAX_FLOW_DEPTH} levels; "
@@ -798,6 +798,10 @@ def _read(source) -> tuple[object, str]:
             raw = yaml.load(stream, Loader=_UniqueKeyLoader)
         except OSError as err:
             raise SceneError(str(path), [f"cannot read scene file: {err.strerror or err}"]) from err
+        except UnicodeDecodeError as err:
+            line = err.object.count(b"\n", 0, err.start) + 1
+            raise SceneError(str(path), [f"not UTF-8 text: byte {err.object[err.start]:#04x} on line {line} (a "
+                                         "degree sign or accent saved as Latin-1?); save the scene as UTF-8"]) from None
         except yaml.YAMLError as err:
             raise SceneError(str(path), [f"invalid YAML: {err}"]) from err
         except RecursionError:
