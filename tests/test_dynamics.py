@@ -128,6 +128,10 @@ def test_dynamics_keys_keep_old_hashes_and_bad_ones_are_refused():
         lc.transient(lc.load_scene(TABLE1, {"motion.kind": "stop", "motion.mass": 1e-4}), progress=False)
     with pytest.raises(lc.SceneError, match="needs motion.mass > 0"):
         lc.transient(lc.load_scene(TABLE1, {"mesh.ny": 1, "motion.vibration": "sine"}), progress=False)
+    # the converse, found by a hostile run (thirtieth session): an acceleration with no vibration was ignored
+    with pytest.raises(lc.SceneError, match="with motion.vibration = 'none': there is no excitation"):
+        lc.transient(lc.load_scene(TABLE1, {"mesh.ny": 1, "motion.kind": "stop", "motion.vibration_acceleration": 100}),
+                     progress=False)
 
 
 def test_random_vibration_has_its_rms_and_its_band():

@@ -148,6 +148,12 @@ def motion_problems(scene) -> list[str]:
             f"motion.vibration = {m.vibration!r} acts on the contact through its mass: it needs motion.mass > 0 "
             f"(is {m.mass:g} kg) and motion.vibration_acceleration not 0 (is {m.vibration_acceleration:g} m/s^2)"
         )
+    if m.vibration == "none" and m.vibration_acceleration != 0.0:
+        problems.append(
+            f"motion.vibration_acceleration = {m.vibration_acceleration:g} m/s^2 with motion.vibration = 'none': there "
+            "is no excitation to apply it to; allowed: a motion.vibration (sine, sine_sweep, random, "
+            "half_sine_shock) with motion.mass > 0, or no motion.vibration_acceleration"
+        )
     if scene.solver.method == "newton" and scene.motion.kind != "steady" and scene.mesh.ny > 1:
         problems.append(
             "solver.method = 'newton' with a motion on a 2-D mesh: the one Newton steps line contacts so far (on 2-D "
