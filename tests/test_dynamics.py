@@ -240,3 +240,25 @@ def test_a_run_that_ends_before_its_rest_has_no_reconnection_and_says_why(overri
     assert ds["converged"].item() == 1 and math.isnan(ds["reconnect_time"].item())
     assert f"{why}, not before the run ends" in ds.attrs["notes"]
     assert ds["time"].values[-1] == pytest.approx(end)
+
+
+def test_keys_a_motion_does_not_read_are_named_and_move_nothing():
+    # found by a hostile run (thirtieth session): keys of another motion kind or excitation
+    # were accepted and hashed without a word
+    from lubecontact.model.validity import scene_warnings
+    from lubecontact.scene.scene import Motion
+    from lubecontact.scene.unread_keys import KIND_KEYS, VIBRATION_KEYS, unread_motion_keys
+
+    assert set(KIND_KEYS) | set(VIBRATION_KEYS) <= set(Motion.keys())
+    stop = {"mesh.ny": 1, "mesh.nx": 31, "motion.kind": "stop", "motion.duration": 0.002}
+    unread = {**stop, "motion.frequency": 50.0, "motion.vibration_seed": 3, "motion.ramp": 2e-4}
+    scene = lc.load_scene(TABLE1, unread)
+    assert [k.split(" ")[0] for k in unread_motion_keys(scene)] == ["motion.frequency", "motion.vibration_seed"]
+    assert any("does not read motion.frequency" in w for w in scene_warnings(scene))
+    assert scene.hash != lc.load_scene(TABLE1, {**stop, "motion.ramp": 2e-4}).hash
+    moved = lc.transient(scene, progress=False)
+    plain = lc.transient(lc.load_scene(TABLE1, {**stop, "motion.ramp": 2e-4}), progress=False)
+    np.testing.assert_array_equal(moved["contact_resistance"].values, plain["contact_resistance"].values)
+    explicit = lc.load_scene(TABLE1, {**stop, "mesh.x_min": -1e-3, "mesh.x_max": 5e-4, "motion.rest_refinement": 4})
+    assert [k.split(" ")[0] for k in unread_motion_keys(explicit)] == ["motion.rest_refinement"]
+    assert unread_motion_keys(lc.load_scene(TABLE1, {**stop, "motion.rest_refinement": 4})) == []

@@ -39,6 +39,7 @@ import numpy as np
 from lubecontact.io.case_schema import VALIDITY_FLAGS
 from lubecontact.physics.inlet import inlet_film_fraction
 from lubecontact.physics.viscosity_temperature import DATASHEET_TEMPERATURES
+from lubecontact.scene.unread_keys import unread_motion_keys_note
 
 GW_MAX_AREA_FRACTION = 0.1
 LINE_YIELD_ONSET = 1.67  # p0/S_y at first yield under a Hertzian line load (von Mises, nu = 0.3)
@@ -90,7 +91,8 @@ def cold_extrapolation_note(scene) -> str | None:
 
 def scene_warnings(scene) -> list[str]:
     """What is wrong with a valid scene without making it unusable (printed by the CLI)."""
-    return [note for note in (bandwidth_note(scene.roughness), cold_extrapolation_note(scene)) if note]
+    return [note for note in (bandwidth_note(scene.roughness), cold_extrapolation_note(scene),
+                              unread_motion_keys_note(scene)) if note]
 
 
 def share(weight: np.ndarray, where: np.ndarray) -> float:
