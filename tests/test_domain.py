@@ -99,3 +99,13 @@ def test_a_smooth_film_s_domain_is_sized_by_the_load_not_the_roughness():
     assert auto_length_scale(rigid) == pytest.approx(rough, rel=1e-12)  # no Hertz width without deformation
     crowned = lc.load_scene(TABLE1, {**smooth, "geometry.crown_radius": 0.1})
     assert auto_length_scale(crowned) == pytest.approx(2.0 * 75.47e-6, rel=1e-3)
+
+
+def test_a_domain_narrower_than_the_contact_says_so_where_the_cylinder_sinks():
+    # found by a hostile run (thirtieth session): a 2 nm explicit domain under Table 1's
+    # 0.35 mm contact ended in "a film of -0.0985 m is not smaller than the cylinder's
+    # radius", which did not say why
+    scene = lc.load_scene(TABLE1, {"mesh.ny": 1, "mesh.x_min": -1e-9, "mesh.x_max": 1e-9})
+    ds = lc.solve(scene)
+    assert ds["converged"].item() == 0
+    assert "is narrower than the contact expected under operating.force (0.000346 m)" in ds.attrs["notes"]
