@@ -113,6 +113,15 @@ def test_bandwidth_at_sigma_0_02_um(capsys, tmp_path):
     assert "bandwidth" in flags(ds)
 
 
+def test_summits_larger_than_the_cylinder_are_warned_of(capsys):
+    # found by a hostile run (thirtieth session): a surface whose header said um for heights
+    # in m gave R_peak = 115 m on a 10 mm cylinder, solved without a word
+    assert main(["show", TABLE1, "--set", "roughness.asperity_radius=0.01"]) == 0
+    assert "roughness.asperity_radius = 0.01 m is not smaller than the cylinder's radius" in capsys.readouterr().err
+    assert main(["show", TABLE1, "--set", "roughness.asperity_radius=0.0099"]) == 0
+    assert "asperity_radius" not in capsys.readouterr().err
+
+
 def test_inlet_flag_follows_the_film():
     """Rigid-inlet fraction against Martin's fully flooded film; the flag at 10 m/s where the
     fixed inlet starves the film (docs/physics.md section 17) and not at rest (no fluid)."""
