@@ -409,3 +409,10 @@ def test_the_sweep_api_refuses_a_speed_given_twice():
 
     with pytest.raises(ValueError, match=r"each speed once: \[0.1\] listed twice"):
         lc.sweep(lc.load_scene(SCENE), [0.1, 1.0, 0.1])
+
+
+def test_a_refused_motion_names_the_scene_file(tmp_path, capsys):
+    # a hostile run's finding (thirtieth session): "invalid scene (scene):"
+    err = refused(capsys, "transient", SCENE, "--set", "mesh.ny=1", "--set", "motion.kind=stop", "--set",
+                  "motion.vibration_acceleration=3", "--out", str(tmp_path / "t.nc"), needle=f"invalid scene ({SCENE})")
+    assert "motion.vibration = 'none'" in err and not (tmp_path / "t.nc").exists()

@@ -257,7 +257,7 @@ def _run(args) -> int:
     elif args.command == "transient":
         from lubecontact.cli.transient import run_transient
 
-        return run_transient(scene, out)
+        return run_transient(scene, out, args.scene)
     else:
         from lubecontact.io.case_schema import write_case
         from lubecontact.studies.sweep import sweep

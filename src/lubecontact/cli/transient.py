@@ -111,11 +111,13 @@ def interrupted_path(out: Path) -> Path:
     return out.with_name(f"{out.stem}.interrupted{out.suffix}")
 
 
-def run_transient(scene, out: Path) -> int:
+def run_transient(scene, out: Path, source: str) -> int:
+    """`lubecontact transient`: the run of ``scene`` (read from the file ``source``, which a
+    refusal names) written to ``out``; the exit code."""
     try:
         ds = transient(scene)
     except SceneError as err:
-        print(f"lubecontact: bad input:\n{err}", file=sys.stderr)
+        print(f"lubecontact: bad input:\n{SceneError(source, err.problems)}", file=sys.stderr)
         return EXIT_BAD_INPUT
     if ds.attrs["interrupted"]:
         out = interrupted_path(out)
