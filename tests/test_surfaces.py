@@ -9,6 +9,7 @@ conversion (the same map in um and in m).
 """
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -437,3 +438,77 @@ def test_a_constant_surface_is_refused_in_a_scene(scene_dir):
 
     with pytest.raises(SceneError, match="sigma = 0"):
         load_scene(str(scene_dir / "scenes" / "s.yaml"), {"roughness.surface": "../maps/flat.asc"})
+
+
+# --- input handling of `lubecontact roughness` (a hostile tester's findings) --------------------
+
+
+@pytest.mark.parametrize("options", [["--size", "1", "1", "--unit", "mm"], ["--size", "1", "1"]],
+                         ids=["size_and_unit", "size_only"])
+def test_cli_refuses_size_for_a_file_whose_header_gives_it(tmp_path, capsys, options):
+    """--size (with or without --unit) on an instrument file used to bypass its header (the
+    matrix read raw, sigma 1000 times off, exit 0); refused instead."""
+    z = isotropic_surface(lambda q: rolled_power_law(q, 2e5, 1.5e6, 0.7), 64, 64e-6, seed=9, rms=0.5e-6)
+    write_asc(tmp_path / "map.asc", z)
+    assert main(["roughness", str(tmp_path / "map.asc"), *options]) == 2
+    captured = capsys.readouterr()
+    assert "header already gives its size and units" in captured.err and "drop --size/--unit" in captured.err
+    assert captured.out == ""
+
+
+def test_a_raw_matrix_with_a_plain_comment_header_still_takes_size(tmp_path):
+    """np.savetxt's own '#' header names no size: the matrix is still raw, --size its size."""
+    z = isotropic_surface(lambda q: rolled_power_law(q, 2e5, 1.5e6, 0.7), 64, 64e-6, seed=9, rms=0.5e-6)
+    np.savetxt(tmp_path / "map.txt", z * 1e6, header="heights in um, rows along y")
+    surface = read_surface(tmp_path / "map.txt", size=(64.0, 64.0), unit="um")
+    assert surface.dx == pytest.approx(1e-6) and np.allclose(surface.heights, z, rtol=1e-15, atol=1e-21)
+
+
+@pytest.mark.parametrize("content", ["", "   \n\n\t\n", "# heights in um\n# none yet\n"], ids=["zero_bytes", "blank", "comments"])
+@pytest.mark.parametrize("size", [["100"], ["100", "100"]], ids=["profile_size", "map_size"])
+def test_cli_refuses_an_empty_matrix_file(tmp_path, capsys, content, size):
+    """An empty file ended in a ZeroDivisionError (exit 1), or with two lengths in "a
+    profile needs one length"; now it is refused as empty."""
+    (tmp_path / "empty.txt").write_text(content)
+    assert main(["roughness", str(tmp_path / "empty.txt"), "--size", *size, "--unit", "um"]) == 2
+    assert "empty (holds no heights)" in capsys.readouterr().err
+
+
+def test_an_empty_matrix_is_refused_without_a_warning(tmp_path):
+    """The refusal is the only message: numpy's "input contained no data" is not shown too."""
+    (tmp_path / "empty.txt").write_text("")
+    np.save(tmp_path / "empty.npy", np.zeros((0, 16)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for name in ("empty.txt", "empty.npy"):
+            with pytest.raises(SurfaceError, match=r"empty \(holds no heights\)"):
+                read_surface(tmp_path / name, size=(100.0,), unit="um")
+    with pytest.raises(SurfaceError, match=r"empty \(holds no heights\)"):
+        from_array(np.zeros((0,)), (1.0,))
+
+
+def test_periodic_map_reports_its_mean_removed_not_a_plane(tmp_path, capsys):
+    """A periodic map loses only its mean (a plane does not wrap around): the printed
+    cut-off line and the --out section's comment say so; a measured map's say plane."""
+    z = isotropic_surface(lambda q: rolled_power_law(q, 2e5, 1.5e6, 0.7), 64, 64e-6, seed=9, rms=0.5e-6)
+    np.save(tmp_path / "s.npy", z * 1e6)
+    args = ["roughness", str(tmp_path / "s.npy"), "--size", "64", "64", "--unit", "um"]
+    assert main([*args, "--periodic", "--out", str(tmp_path / "periodic.yaml")]) == 0
+    printed = capsys.readouterr().out
+    assert "window none, mean removed)" in printed and "plane" not in printed
+    assert "mean removed" in (tmp_path / "periodic.yaml").read_text()
+    assert main([*args, "--out", str(tmp_path / "measured.yaml")]) == 0
+    assert "window tukey, plane detrended)" in capsys.readouterr().out
+    assert "plane detrended" in (tmp_path / "measured.yaml").read_text()
+    assert spectral_moments(from_array(z[0], (64e-6,))).detrending == "line detrended"
+
+
+@pytest.mark.parametrize("cutoff", ["0", "-1e-5", "nan", "inf"])
+def test_cli_refuses_a_cutoff_that_is_not_a_positive_length(tmp_path, capsys, cutoff):
+    """--cutoff 0 silently meant the automatic cut-off, while a scene's surface_cutoff: 0 is
+    refused; refused here too, naming --cutoff and how to get the automatic one."""
+    z = isotropic_surface(lambda q: rolled_power_law(q, 2e5, 1.5e6, 0.7), 64, 64e-6, seed=9, rms=0.5e-6)
+    write_asc(tmp_path / "map.asc", z)
+    assert main(["roughness", str(tmp_path / "map.asc"), f"--cutoff={cutoff}"]) == 2
+    err = capsys.readouterr().err
+    assert f"--cutoff {float(cutoff):g}" in err and "omit --cutoff for the automatic" in err

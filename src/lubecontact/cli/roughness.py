@@ -3,6 +3,7 @@ the sampling and cut-off they were taken at, and a ``roughness:`` scene section.
 
 from __future__ import annotations
 
+import math
 import sys
 
 import yaml
@@ -11,7 +12,7 @@ from lubecontact.io.atomic_write import write_text
 from lubecontact.io.output_path import OutputPathError, check_output_path
 from lubecontact.surfaces.mccool import McCool, composite, parameters
 from lubecontact.surfaces.moments import DEFAULT_CUTOFF_INTERVALS, spectral_moments
-from lubecontact.surfaces.reading import SurfaceError, read_surface
+from lubecontact.surfaces.reading import Surface, SurfaceError, read_surface
 
 
 def describe(title: str, p: McCool) -> list[str]:
@@ -20,7 +21,7 @@ def describe(title: str, p: McCool) -> list[str]:
     dirs = ("x", "y")[: len(m.m2)]
     lines = [f"{title}"]
     lines.append(f"  sampling       = {', '.join(f'd{d} {s * 1e6:.4g} um' for d, s in zip(dirs, m.sampling))}")
-    lines.append(f"  cut-off        = lambda_c {m.cutoff * 1e6:.4g} um (spectral moments, window {m.window}, plane detrended)")
+    lines.append(f"  cut-off        = lambda_c {m.cutoff * 1e6:.4g} um (spectral moments, window {m.window}, {m.detrending})")
     lines.append(f"  m0             = {m.m0:.6g} m^2")
     for name, values, unit in (("m2", m.m2, "1 (mean square slope)"), ("m4", m.m4, "m^-2 (mean square curvature)")):
         lines.append(f"  {name:<14s} = {', '.join(f'{v:.6g} ({d})' for v, d in zip(values, dirs))} {unit}")
@@ -43,7 +44,7 @@ def section_yaml(p: McCool, sources: list[str], split: tuple[float, float] | Non
     head = [
         f"# lubecontact roughness: McCool (1986) parameters of {' + '.join(sources)}",
         f"# cut-off lambda_c = {m.cutoff:.6g} m (default {DEFAULT_CUTOFF_INTERVALS:g} sampling intervals), "
-        f"window {m.window}, plane detrended",
+        f"window {m.window}, {m.detrending}",
         f"# m0 = {m.m0:.6g} m^2, m2 = {', '.join(f'{v:.6g}' for v in m.m2)}, m4 = {', '.join(f'{v:.6g}' for v in m.m4)} m^-2",
         f"# alpha = {p.alpha:.6g}, sigma_s = {p.summit_sigma:.6g} m, gamma = {p.gamma}",
     ]
@@ -52,6 +53,23 @@ def section_yaml(p: McCool, sources: list[str], split: tuple[float, float] | Non
     head += [f"# note: {n}" for n in p.notes()]
     body = {"roughness": {"sigma": p.sigma, "asperity_density": p.asperity_density, "asperity_radius": p.asperity_radius}}
     return "\n".join(head) + "\n" + yaml.safe_dump(body, sort_keys=False)
+
+
+def check_cutoff_option(cutoff: float | None) -> None:
+    """Refuse a --cutoff that is not a length (0, negative, NaN, infinite), as a scene's
+    ``roughness.surface_cutoff`` is refused: the automatic cut-off is had by omitting it."""
+    if cutoff is not None and not (math.isfinite(cutoff) and cutoff > 0.0):
+        raise SurfaceError(
+            f"--cutoff {cutoff:g}: the cut-off wavelength must be a finite length > 0 in m; "
+            f"omit --cutoff for the automatic one ({DEFAULT_CUTOFF_INTERVALS:g} sampling intervals)"
+        )
+
+
+def common_cutoff(cutoff: float | None, surfaces: list[Surface]) -> float:
+    """One cut-off for every surface: the given one, else the default of the coarsest sampling."""
+    if cutoff is not None:
+        return cutoff
+    return DEFAULT_CUTOFF_INTERVALS * max(max(s.dx, s.dy or 0.0) for s in surfaces)
 
 
 def run(args) -> int:
@@ -66,9 +84,9 @@ def run(args) -> int:
     try:
         if len(args.surfaces) > 2:
             raise SurfaceError(f"{len(args.surfaces)} surfaces given; allowed: one, or two for their composite")
+        check_cutoff_option(args.cutoff)
         surfaces = [read_surface(f, args.size, args.unit, args.periodic) for f in args.surfaces]
-        # one cut-off for every surface: the given one, else the default of the coarsest sampling
-        cutoff = args.cutoff or DEFAULT_CUTOFF_INTERVALS * max(max(s.dx, s.dy or 0.0) for s in surfaces)
+        cutoff = common_cutoff(args.cutoff, surfaces)
         params = [parameters(spectral_moments(s, cutoff)) for s in surfaces]
         blocks = [describe(f"surface {f}", p) for f, p in zip(args.surfaces, params)]
         split = None

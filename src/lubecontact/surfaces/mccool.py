@@ -104,5 +104,6 @@ def composite(first: Moments, second: Moments) -> tuple[McCool, tuple[float, flo
         cutoff=first.cutoff,
         window=first.window if first.window == second.window else f"{first.window}+{second.window}",
         sampling=tuple(max(a, b) for a, b in zip(first.sampling, second.sampling)),
+        detrending=first.detrending if first.detrending == second.detrending else f"{first.detrending}+{second.detrending}",
     )
     return parameters(summed), (first.m0 / summed.m0, second.m0 / summed.m0)

@@ -50,6 +50,7 @@ class Moments:
     cutoff: float  # lambda_c, m
     window: str
     sampling: tuple[float, ...]  # dx (, dy), m
+    detrending: str  # what was removed before the moments: see detrending()
 
     @property
     def m2_mean(self) -> float:
@@ -78,6 +79,13 @@ def detrended(surface: Surface) -> np.ndarray:
     basis = np.column_stack(columns)
     coef, *_ = np.linalg.lstsq(basis, z.ravel(), rcond=None)
     return z - (basis @ coef).reshape(z.shape)
+
+
+def detrending(surface: Surface) -> str:
+    """What ``detrended`` removes from ``surface``, in the words every result prints."""
+    if surface.periodic:
+        return "mean removed"
+    return "line detrended" if surface.is_profile else "plane detrended"
 
 
 def tukey_window(n: int, taper: float) -> np.ndarray:
@@ -151,4 +159,4 @@ def spectral_moments(surface: Surface, cutoff: float | None = None, window: str 
         m4.append(float(np.sum(q[keep] ** 4 * power[keep])))
     if not (np.mean(m2) > 0.0 and np.mean(m4) > 0.0):
         raise SurfaceError(f"{surface.source}: no roughness at wavelengths between the cut-off {cutoff:.4g} m and the map size")
-    return Moments(m0, tuple(m2), tuple(m4), cutoff, window, sampling)
+    return Moments(m0, tuple(m2), tuple(m4), cutoff, window, sampling, detrending(surface))

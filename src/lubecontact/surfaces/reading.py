@@ -10,13 +10,15 @@ Two routes:
   ``unit``: both lengths and heights in that unit). One row, or a 1-D array, is a profile.
 
 Refused, with the reason (``SurfaceError``): an unreadable file, an unknown format, a file
-without a size when none is given, heights with NaN gaps (undefined points), a non-uniform
-grid (x-z pairs at irregular spacing), fewer than ``MIN_POINTS`` points along a direction.
+without a size when none is given, a size given for a file whose header gives its own, a
+file holding no heights, heights with NaN gaps (undefined points), a non-uniform grid (x-z
+pairs at irregular spacing), fewer than ``MIN_POINTS`` points along a direction.
 """
 
 from __future__ import annotations
 
 import hashlib
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -71,6 +73,7 @@ def read_surface(path, size=None, unit: str | None = None, periodic: bool = Fals
             raise SurfaceError(f"{path}: a raw height matrix needs its size (--size LX [LY]) and unit (--unit)")
         heights, dx, dy, periodic = _instrument(path, unit)
     else:
+        _refuse_size_for_a_header_with_size(path)
         heights, dx, dy = _raw(path, size, unit)
     return _checked(heights, dx, dy, periodic, str(path), digest)
 
@@ -110,6 +113,41 @@ def _instrument(path: Path, unit):
     return z, float(pixel[0]), float(pixel[1]), bool(topography.is_periodic)
 
 
+def _refuse_size_for_a_header_with_size(path: Path) -> None:
+    """Refuse --size (and --unit) for a file whose header gives its size: read as a raw
+    matrix, its header would be skipped as comments and its own size and unit ignored."""
+    if _header_gives_size(path):
+        raise SurfaceError(
+            f"{path}: the file's header already gives its size and units; drop --size/--unit "
+            "(they are for a raw height matrix without a header)"
+        )
+
+
+def _header_gives_size(path: Path) -> bool:
+    """Whether the instrument reader finds a physical size in the file's '#' header (a
+    headerless matrix or a .npy has none, and is not handed to the reader at all)."""
+    if path.suffix.lower() == ".npy" or not _has_comment_header(path):
+        return False
+    try:
+        from SurfaceTopography import open_topography
+
+        return open_topography(str(path)).default_channel.physical_sizes is not None
+    except Exception:  # noqa: BLE001 - no reader takes the file: it gives no size of its own
+        return False
+
+
+def _has_comment_header(path: Path) -> bool:
+    """Whether '#' lines (which np.loadtxt skips) come before the first line of data."""
+    try:
+        with path.open(encoding="utf-8", errors="replace") as text:
+            for line in text:
+                if line.strip():
+                    return line.lstrip().startswith("#")
+    except OSError:
+        return False  # reading the matrix says why
+    return False
+
+
 def _raw(path: Path, size, unit):
     if unit is None:
         raise SurfaceError(f"{path}: a raw height matrix needs its unit (--unit {'|'.join(u for u in UNITS if u.isascii())})")
@@ -117,16 +155,26 @@ def _raw(path: Path, size, unit):
         if path.suffix.lower() == ".npy":
             z = np.load(path, allow_pickle=False)
         else:
-            z = np.loadtxt(path, delimiter="," if path.suffix.lower() == ".csv" else None)
+            z = _text_matrix(path)
     except (OSError, ValueError) as err:
         raise SurfaceError(f"{path}: cannot read as a height matrix ({err})") from err
     return _scaled(np.asarray(z, dtype=float), size, unit, str(path))
+
+
+def _text_matrix(path: Path) -> np.ndarray:
+    """The numbers of a plain text matrix ('#' comments skipped; empty if it holds none,
+    without numpy's warning: the caller refuses an empty matrix with its own message)."""
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="loadtxt: input contained no data")
+        return np.loadtxt(path, delimiter="," if path.suffix.lower() == ".csv" else None)
 
 
 def _scaled(z: np.ndarray, size, unit: str, source: str):
     """Heights and sampling intervals in m from a matrix in ``unit`` of the given size."""
     if unit not in UNITS:
         raise SurfaceError(f"{source}: unit {unit!r} unknown; allowed: {', '.join(UNITS)}")
+    if z.size == 0:
+        raise SurfaceError(f"{source}: empty (holds no heights); give a matrix of heights, one row of the map per line")
     if z.ndim == 1 or (z.ndim == 2 and z.shape[0] == 1):
         z = z.reshape(1, -1)
     elif z.ndim != 2:
