@@ -416,3 +416,12 @@ def test_a_refused_motion_names_the_scene_file(tmp_path, capsys):
     err = refused(capsys, "transient", SCENE, "--set", "mesh.ny=1", "--set", "motion.kind=stop", "--set",
                   "motion.vibration_acceleration=3", "--out", str(tmp_path / "t.nc"), needle=f"invalid scene ({SCENE})")
     assert "motion.vibration = 'none'" in err and not (tmp_path / "t.nc").exists()
+
+
+def test_a_vanishing_force_ends_not_converged_not_in_an_internal_error(tmp_path, capsys):
+    # a hostile run's finding (thirtieth session): operating.force = 1e-200 N overflowed a
+    # Python float in the Newton's merit (OverflowError, exit 1)
+    code, _, err = run(capsys, "solve", SCENE, "--set", "mesh.ny=1", "--set", "operating.force=1e-200",
+                       "--out", str(tmp_path / "f.nc"))
+    assert code == cli.EXIT_NOT_CONVERGED and "internal error" not in err, err
+    assert xr.load_dataset(tmp_path / "f.nc")["converged"].item() == 0

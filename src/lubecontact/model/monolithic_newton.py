@@ -183,10 +183,13 @@ class Linearisation:
         return self.jacobians[1]
 
     def merit(self) -> float:
-        """Half the squared norm of the scaled residual (p by p_s, films by h_s)."""
-        total = float(np.sum((self.r_p / self.pressure_scale) ** 2)) + (self.r_z / self.film_scale) ** 2
-        if self.r_delta is not None:
-            total += float(np.sum((self.r_delta / self.film_scale) ** 2))
+        """Half the squared norm of the scaled residual (p by p_s, films by h_s); inf where it
+        overflows (an iterate that far off is infinitely bad, and the line search rejects it:
+        a Python float's ** raised OverflowError, an internal error, at operating.force 1e-200 N)."""
+        with np.errstate(over="ignore"):
+            total = float(np.sum(np.square(self.r_p / self.pressure_scale)) + np.square(self.r_z / self.film_scale))
+            if self.r_delta is not None:
+                total += float(np.sum(np.square(self.r_delta / self.film_scale)))
         return 0.5 * total
 
 
