@@ -42,9 +42,24 @@ localrules:
     transient_figure,
 
 
+# The other netCDF products, each beside its own memo of files found complete: one that
+# does not read back (truncated by a full disk, overwritten) is moved to .corrupt/ beside it,
+# as an incomplete case is (cases.smk), so a rerun builds it again instead of failing on it.
+if _main_process:
+    PRODUCTS = {
+        f"{RESULTS}/data": [f"{RESULTS}/data/{name}.nc" for name in
+                            [*FIGURES, "accuracy_cost", *(f"transient_{ladder}" for ladder in TRANSIENT_LADDERS)]],
+        f"{RESULTS}/accuracy": [f"{RESULTS}/accuracy/study.nc"],
+        f"{RESULTS}/transient": [f"{RESULTS}/transient/{case}.nc" for case in TRANSIENT_OVERRIDES],
+    }
+    for _folder, _paths in PRODUCTS.items():
+        for _line in lccases.quarantine_datasets(_paths, f"{_folder}/.complete.json"):
+            print(f"lubecontact: {_line}", file=sys.stderr)
+
+
 # Every product is a target, intermediates included: a case or data file deleted (or moved
-# aside as incomplete, cases.smk) is rebuilt by a plain rerun, and what depends on it
-# follows (its input is then newer).
+# aside as incomplete, cases.smk, or above) is rebuilt by a plain rerun, and what depends on
+# it follows (its input is then newer).
 rule all:
     input:
         expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=FIGURES, ext=["png", "pdf"]),

@@ -85,6 +85,16 @@ def test_quarantine_moves_only_bad_files_and_remembers_good_ones(case, tmp_path)
         casefiles.case_problem = original
 
 
+def test_a_product_that_does_not_read_back_is_moved_aside(case, tmp_path):
+    path, _ = case
+    good, bad = tmp_path / "fig04.nc", tmp_path / "fig06.nc"
+    good.write_bytes(path.read_bytes())
+    bad.write_bytes(path.read_bytes()[:500])
+    moved = casefiles.quarantine_datasets([str(good), str(bad), str(tmp_path / "absent.nc")], tmp_path / ".complete.json")
+    assert len(moved) == 1 and moved[0].startswith(f"{bad}: unreadable") and moved[0].endswith("it will be built again")
+    assert good.exists() and not bad.exists() and len(list((tmp_path / ".corrupt").iterdir())) == 1
+
+
 def test_job_log_keeps_the_traceback_and_restores_the_streams(tmp_path):
     log = tmp_path / "job.log"
     saved = sys.stdout, sys.stderr

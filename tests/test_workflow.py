@@ -406,8 +406,9 @@ def test_quiet_dry_run_without_parameter_dumps(fresh):
 
 @pytest.mark.slow
 def test_corrupt_or_deleted_files_are_restored_by_one_plain_rerun(built):
-    """Issue 13: a truncated case, a deleted case and a deleted figure dataset; one plain
-    run moves the bad file aside (naming it), re-solves, re-collects and re-draws."""
+    """Issue 13: a truncated case, a deleted case and a truncated figure dataset (which
+    failed every rerun until the thirtieth session); one plain run moves the bad files aside
+    (naming them), re-solves, re-collects and re-draws."""
     out = built / "results" / "test"
     fig04 = xr.load_dataset(out / "data" / "fig04.nc")
     truncated = out / "cases" / f"{fig04['case_id'].values[1, 2]}.nc"  # sigma = 1 um, 1 m/s
@@ -415,10 +416,12 @@ def test_corrupt_or_deleted_files_are_restored_by_one_plain_rerun(built):
     reference = xr.load_dataset(truncated)
     truncated.write_bytes(truncated.read_bytes()[:2000])
     deleted.unlink()
-    (out / "data" / "fig08.nc").unlink()
+    dataset = out / "data" / "fig08.nc"
+    dataset.write_bytes(dataset.read_bytes()[:500])
     figures_before = {p.name: p.stat().st_mtime_ns for p in (out / "figures").glob("fig*.png")}
     done = snakemake(built, *PROFILE, "--cores", "2", *TINY)
     assert f"results/test/cases/{truncated.name}: unreadable" in done.stderr and ".corrupt" in done.stderr
+    assert "results/test/data/fig08.nc: unreadable" in done.stderr and "it will be built again" in done.stderr
     repaired = xr.load_dataset(truncated)
     assert repaired["contact_resistance"].item() == pytest.approx(reference["contact_resistance"].item(), rel=1e-9)
     assert deleted.is_file() and (out / "data" / "fig08.nc").is_file()
@@ -426,6 +429,7 @@ def test_corrupt_or_deleted_files_are_restored_by_one_plain_rerun(built):
     # and the full-path figures drawn over those datasets (compare: figNN)
     assert redrawn == {"fig04.png", "fig05.png", "fig08.png", "fig10.png", "fig11.png", "fig04p.png", "fig08p.png", "fig10p.png"}
     assert len(list((out / "cases" / ".corrupt").glob("*.nc"))) == 1
+    assert len(list((out / "data" / ".corrupt").glob("*.nc"))) == 1 and xr.load_dataset(dataset)["case_id"].size
     assert planned(built, *TINY) == Counter()
 
 

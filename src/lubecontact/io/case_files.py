@@ -2,7 +2,9 @@
 every variable reads back, and it carries its scene hash and the solver-sources
 fingerprint (the solve job writes both, atomically). Anything else (a truncated or
 overwritten file, a foreign file under the name) is moved aside so that the workflow solves
-the case again: nothing stale is kept, nothing is deleted.
+the case again: nothing stale is kept, nothing is deleted. The workflow's other netCDF
+products (a figure's dataset, a transient run, the accuracy study) are moved aside the same
+way where they do not read back, so a rerun rebuilds them.
 """
 
 from __future__ import annotations
@@ -11,6 +13,7 @@ import json
 import os
 import time
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 import netCDF4
@@ -22,9 +25,9 @@ FINGERPRINT = "solver_sources_sha256"
 QUARANTINE = ".corrupt"  # hidden folder next to the case files
 
 
-def case_problem(path, case_id: str, fingerprint: str | None = None) -> str | None:
-    """Why ``path`` is not the complete case ``case_id`` (solved by ``fingerprint``, if
-    given), or None. A missing file is a problem too ("missing")."""
+def read_back(path) -> dict | str:
+    """The global attributes of the netCDF file ``path`` after every variable read back, or
+    why it does not read ("missing", "unreadable (...)")."""
     path = Path(path)
     if not path.exists():
         return "missing"
@@ -35,6 +38,21 @@ def case_problem(path, case_id: str, fingerprint: str | None = None) -> str | No
                 var[...]
     except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:  # netCDF/HDF5 errors
         return f"unreadable ({type(err).__name__}: {err})"
+    return attrs
+
+
+def dataset_problem(path) -> str | None:
+    """Why ``path`` is not a netCDF dataset that reads back, or None."""
+    attrs = read_back(path)
+    return attrs if isinstance(attrs, str) else None
+
+
+def case_problem(path, case_id: str, fingerprint: str | None = None) -> str | None:
+    """Why ``path`` is not the complete case ``case_id`` (solved by ``fingerprint``, if
+    given), or None. A missing file is a problem too ("missing")."""
+    attrs = read_back(path)
+    if isinstance(attrs, str):
+        return attrs
     if attrs.get("scene_hash") != case_id:
         return f"scene_hash is {attrs.get('scene_hash')!r}, not {case_id!r}"
     if not attrs.get(FINGERPRINT):
@@ -89,7 +107,21 @@ def _signature(path: Path) -> list[int]:
 
 def quarantine(cases: dict[str, str], memo) -> list[str]:
     """Move every existing but incomplete case file aside (``cases``: id -> path); one
-    message per file moved, naming it, why, and where it went.
+    message per file moved, naming it, why, and where it went (move_aside)."""
+    return move_aside({path: partial(case_problem, path, case_id) for case_id, path in cases.items()}, memo,
+                      "the case will be solved again")
+
+
+def quarantine_datasets(paths, memo) -> list[str]:
+    """Move every existing netCDF product in ``paths`` that does not read back aside, so the
+    workflow builds it again (a truncated figure dataset had failed every rerun)."""
+    return move_aside({path: partial(dataset_problem, path) for path in paths}, memo, "it will be built again")
+
+
+def move_aside(checks: dict, memo, then: str) -> list[str]:
+    """Move each existing file of ``checks`` (path -> a call giving why it is not complete,
+    or None) that is not complete into QUARANTINE beside it; one message per file moved,
+    naming it, why, where it went and ``then`` (what the workflow does about it).
 
     Reading ~500 files costs seconds, so a file found complete is remembered in ``memo``
     (JSON: name -> size, mtime, inode) and read again only when one of those changes (any
@@ -101,19 +133,19 @@ def quarantine(cases: dict[str, str], memo) -> list[str]:
         known = {}
     good, moved = {}, []
     stamp = time.strftime("%Y%m%dT%H%M%S")
-    for case_id, path in cases.items():
+    for path, problem in checks.items():
         path = Path(path)
         if not path.exists():
             continue
         signature = _signature(path)
-        why = None if known.get(path.name) == signature else case_problem(path, case_id)
+        why = None if known.get(path.name) == signature else problem()
         if why is None:
             good[path.name] = signature
             continue
         aside = path.parent / QUARANTINE / f"{path.stem}.{stamp}{path.suffix}"
         aside.parent.mkdir(exist_ok=True)
         os.replace(path, aside)
-        moved.append(f"{path}: {why}; moved to {aside}, the case will be solved again")
+        moved.append(f"{path}: {why}; moved to {aside}, {then}")
     if good != known and (good or memo.exists()):
         memo.parent.mkdir(parents=True, exist_ok=True)
         write_text(memo, json.dumps(good, sort_keys=True))
