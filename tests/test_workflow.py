@@ -261,6 +261,10 @@ def test_plot_style_change_only_redraws(built):
         assert planned(built, *TINY) == Counter(plot=1, all=1)
     with edited(built / "src" / "lubecontact" / "plotting" / "figures.py", '"\\u2013",\n', '"-",\n'):
         assert planned(built, *TINY) == Counter(plot=16, all=1)
+    # the collecting code re-collects (found by a hostile run in the thirtieth session: an
+    # edit of it left every dataset stale)
+    with edited(built / "src" / "lubecontact" / "studies" / "collect.py", '"""', '"""Edited. '):
+        assert planned(built, *TINY) == Counter(collect=16, plot=16, all=1)
     # the CLI and the studies' planning decide no case: editing them reruns nothing
     with edited(built / "src" / "lubecontact" / "cli" / "main.py", '"""', '"""Edited. '):
         assert planned(built, *TINY) == Counter()
