@@ -324,3 +324,22 @@ def test_chunk_names_are_readable_and_short_enough_for_slurm_bundles():
     script = "snakejob.solve_" + "_".join(sorted(names)[-5:] + ["..."]) + "." + "u" * 36 + ".sh.waitforfilesfile.txt"
     assert len(script) <= 255
     assert "solve_fig04_sigma_2_5e_07_" in " ".join(names) and "solve_fig03_mesh_201_201_" in " ".join(names)
+
+
+def test_a_plot_section_is_checked_against_the_dataset_it_will_draw():
+    # found by a hostile run (thirtieth session): a misspelt plot.y, legend placeholder or
+    # display unit failed only in the plot job, after every solve, deleting the old figure
+    from lubecontact.studies.plot_spec import plot_problems
+
+    spec = {**sigma_figure(), "plot": {"y": "contact_resistence", "x": ["speed"],
+                                       "legend": {"label": "{sgima} um", "units": {"sigma": "furlong"}}}}
+    problems = plot_problems(grid.expand("fig04", spec))
+    assert [p.split(":")[0] for p in problems] == ["figure fig04, plot.y = 'contact_resistence'",
+                                                   "figure fig04, plot.legend.label names {sgima}",
+                                                   "figure fig04, plot.legend.units.sigma = 'furlong'"]
+    good = {**spec, "plot": {"y": "contact_resistance", "x": ["speed"], "legend": {"label": "{sigma} um",
+                                                                                  "units": {"sigma": "um"}}}}
+    assert plot_problems(grid.expand("fig04", good)) == []
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())  # every shipped figure passes
+    specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"], config["figures"]) for f in config["figures"]}
+    assert all(plot_problems(g) == [] for g in grid.expand_all(specs, root=ROOT).values())

@@ -11,6 +11,11 @@ for _figure in FIGURES:
     SPECS[_figure] = lcgrid.figure_spec(_figure, config["figure_dir"], config["figures"])
     validate(SPECS[_figure], "../schemas/figure.schema.yaml")
 GRIDS = lcgrid.expand_all(SPECS)
+# what each figure's plot: section names, checked now, not in its plot job after every solve
+_plot_problems = [problem for grid in GRIDS.values() for problem in lcplotspec.plot_problems(grid)]
+if _plot_problems:
+    raise lcgrid.GridError("the figures' plot sections (config/figures/figNN.yaml, config figures:):\n  "
+                        + "\n  ".join(_plot_problems))
 CHUNKS = lcgrid.plan_chunks(
     GRIDS.values(), None if config["cases_per_job"] == "curve" else config["cases_per_job"]
 )

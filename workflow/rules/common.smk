@@ -17,6 +17,7 @@ import lubecontact
 from lubecontact.io import case_files as lccases
 from lubecontact.io import job_plans as lcplans
 from lubecontact.studies import figure_grids as lcgrid
+from lubecontact.studies import plot_spec as lcplotspec
 
 validate(config, "../schemas/config.schema.yaml")
 

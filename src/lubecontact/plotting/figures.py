@@ -36,6 +36,7 @@ from lubecontact.model.validity import (
     MIN_BANDWIDTH,
     MIN_FLOW_FACTOR_FILM,
 )
+from lubecontact.studies.plot_spec import DISPLAY_UNITS
 
 # x quantities: name -> (long_name, CF units, function of the figure Dataset)
 X_QUANTITIES = {
@@ -55,20 +56,6 @@ UNIT_LABELS = {
     "ohm m": "\u03a9 m",
     "degC": "\u00b0C",
     "1": "\u2013",
-}
-
-# display unit in a legend -> (CF units of the coordinate, size of one display unit in them)
-DISPLAY_UNITS = {
-    "m": ("m", 1.0),
-    "mm": ("m", 1e-3),
-    "\u00b5m": ("m", 1e-6),
-    "um": ("m", 1e-6),
-    "nm": ("m", 1e-9),
-    "N": ("N", 1.0),
-    "mN": ("N", 1e-3),
-    "Pa s": ("Pa s", 1.0),
-    "mPa s": ("Pa s", 1e-3),
-    "m/s": ("m s-1", 1.0),
 }
 
 NOT_CONVERGED_STYLE = {"marker": "x", "color": "tab:red", "markersize": 8, "markeredgewidth": 1.6, "linestyle": "none"}
