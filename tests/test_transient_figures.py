@@ -190,6 +190,30 @@ def test_a_design_chart_of_no_case_is_refused_naming_the_figure_and_the_list(emp
         study.figure_cases(spec)
 
 
+@pytest.mark.parametrize("overrides, words", [
+    ({"sett": {"mesh.nx": 21}}, "unknown key 'sett'; allowed: base, figures, set"),
+    ({"figures": {"stop": {"curves": []}}}, "transient figure 'stop': 'curves' is empty"),
+    ({"figures": {"stop": {"curves": [{"label": "a", "set": {}}, {"label": "a", "sett": {}}]}}},
+     "transient figure 'stop': curve label 'a' given twice"),
+    ({"figures": {"stop": {"curves": [{"label": "a", "sett": {}}]}}}, "curve 1: unknown key 'sett'"),
+    ({"figures": {"reconnect": {"values": [0.1, 0.1]}}}, "transient figure 'reconnect': value 0.1 of 'values' given twice"),
+    ({"figures": {"stopp": {"titel": "x"}}}, "transient figure 'stopp' (single case): unknown key 'titel'"),
+])
+def test_a_transient_study_refuses_what_it_would_ignore_or_draw_empty(overrides, words):
+    # found by a hostile run (thirtieth session): each was accepted; a misspelt key was
+    # ignored, empty curves drew empty axes
+    with pytest.raises(ValueError, match="config/transient.yaml") as refused:
+        study.study_spec("config/transient.yaml", overrides)
+    assert words in str(refused.value)
+
+
+def test_a_bad_scene_key_of_a_transient_curve_names_the_figure_and_the_curve():
+    spec = study.study_spec("config/transient.yaml", {"figures": {"stop": {"curves": [
+        {"label": "thick oil", "set": {"lubricant.viscosty": 1.0}}]}}})
+    with pytest.raises(lc.SceneError, match=r"transient figure 'stop', 'thick oil'.*\n.*did you mean lubricant.viscosity"):
+        study.figure_cases(spec)
+
+
 @pytest.mark.parametrize("overrides", [None, "config/test.yaml"])
 def test_the_shock_study_plans_one_case_per_shock_by_its_scene(overrides):
     """Each shock is the scene of the study's set, the figure's set and its peak, named by its

@@ -20,7 +20,7 @@ from dataclasses import fields
 
 import yaml
 
-from lubecontact.scene.scene import SECTIONS, load_scene
+from lubecontact.scene.scene import SECTIONS, SceneError, load_scene
 
 
 def _merge(base: dict, extra: Mapping | None) -> dict:
@@ -30,10 +30,70 @@ def _merge(base: dict, extra: Mapping | None) -> dict:
     return out
 
 
+# the keys a transient figure of each kind takes (figure_kind), and the study's own
+FIGURE_KEYS = {
+    "curves": {"title", "set", "curves"},
+    "design chart": {"title", "set", "x", "x_scale", "values", "series"},
+    "ladder": {"title", "set", "meshes", "mesh_ny", "line", "tolerances", "rest_refinements"},
+    "single case": {"title", "set"},
+}
+STUDY_KEYS = {"base", "set", "figures"}
+CURVE_KEYS = {"label", "set"}
+
+
 def study_spec(path, overrides: Mapping | None = None) -> dict:
-    """config/transient.yaml deep-merged with ``overrides`` (config["transient"])."""
+    """config/transient.yaml deep-merged with ``overrides`` (config["transient"]); ValueError
+    listing every key it does not know (spec_problems), naming the file."""
     with open(path) as stream:
-        return _merge(yaml.safe_load(stream), overrides)
+        spec = _merge(yaml.safe_load(stream), overrides)
+    problems = spec_problems(spec)
+    if problems:
+        raise ValueError(f"{path} (with config transient:):\n  " + "\n  ".join(problems))
+    return spec
+
+
+def figure_kind(figure: Mapping) -> str:
+    """What a transient figure draws, from the keys it has: curves, a design chart (x), a
+    convergence ladder (meshes), or one case (set alone)."""
+    if "curves" in figure:
+        return "curves"
+    if "x" in figure:
+        return "design chart"
+    return "ladder" if is_ladder(figure) else "single case"
+
+
+def spec_problems(spec: Mapping) -> list[str]:
+    """Why the study ``spec`` is not what its figures can draw: unknown keys (a misspelt key
+    was silently ignored), a curves figure with no curve (it drew empty axes) or with a label
+    twice, a design chart with a value twice, a figure that names no case."""
+    problems = [f"unknown key {key!r}; allowed: {', '.join(sorted(STUDY_KEYS))}" for key in spec if key not in STUDY_KEYS]
+    for name, figure in (spec.get("figures") or {}).items():
+        where = f"transient figure {name!r}"
+        if not isinstance(figure, Mapping):
+            problems.append(f"{where}: not a mapping")
+            continue
+        kind = figure_kind(figure)
+        allowed = FIGURE_KEYS[kind]
+        problems += [f"{where} ({kind}): unknown key {key!r}; allowed: {', '.join(sorted(allowed))}"
+                     for key in figure if key not in allowed]
+        if kind == "single case" and "set" not in figure:
+            problems.append(f"{where}: names no case; give curves, a design chart (x, values, series), a ladder "
+                            "(meshes) or a set")
+        if kind == "curves":
+            curves = figure["curves"] or []
+            labels = [curve.get("label") for curve in curves if isinstance(curve, Mapping)]
+            if not curves:
+                problems.append(f"{where}: 'curves' is empty; a figure of curves needs one at least")
+            problems += [f"{where}: curve label {label!r} given twice" for label in sorted(
+                {lb for lb in labels if labels.count(lb) > 1}, key=str)]
+            problems += [f"{where}: curve {i + 1}: unknown key {key!r}; allowed: {', '.join(sorted(CURVE_KEYS))}"
+                         for i, curve in enumerate(curves) if isinstance(curve, Mapping) for key in curve
+                         if key not in CURVE_KEYS]
+        if kind == "design chart":
+            values = list(figure.get("values") or [])
+            problems += [f"{where}: value {v!r} of 'values' given twice" for v in sorted({v for v in values
+                                                                                         if values.count(v) > 1})]
+    return problems
 
 
 def _scene(spec: Mapping, overrides: Mapping):
@@ -55,9 +115,12 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
             out[name] = ladder_cases(name, figure)
         else:
             out[name] = [{"label": name, "overrides": dict(figure["set"])}]
-    for cases in out.values():
+    for name, cases in out.items():
         for case in cases:
-            case["id"] = _scene(spec, case["overrides"]).hash
+            try:
+                case["id"] = _scene(spec, case["overrides"]).hash
+            except SceneError as err:  # which figure and curve, not only the base scene file
+                raise SceneError(f"{err.origin}, transient figure {name!r}, {case['label']!r}", err.problems) from None
     return out
 
 
