@@ -151,6 +151,18 @@ def test_bad_grid_value_fails_at_parse_time_naming_it(fresh):
     assert done.returncode != 0
     message = done.stdout + done.stderr
     assert "GridError" in message and "figure fig04" in message and "roughness.sigma = -1e-06: out of range" in message
+    # a value the figure schema refuses names the figure and its file too (a hostile run's
+    # finding, thirtieth session: Snakemake's "Error validating config file" named neither)
+    with edited(config, "sweep: {roughness.sigma: [0.5e-6, 1.0e-6]}", "sweep: {roughness.sigma: []}"):
+        done = subprocess.run([sys.executable, "-m", "snakemake", "-n", *TINY], cwd=fresh, capture_output=True, text=True, timeout=300)
+    message = done.stdout + done.stderr
+    assert done.returncode != 0 and "figure fig04 (config/figures/fig04.yaml" in message and "figure.schema.yaml" in message
+    # and a plot: section is checked at planning, not in its plot job
+    with edited(config, "sweep: {roughness.sigma: [0.5e-6, 1.0e-6]}",
+                "sweep: {roughness.sigma: [0.5e-6, 1.0e-6]}\n    plot: {y: contact_resistence, x: [speed]}"):
+        done = subprocess.run([sys.executable, "-m", "snakemake", "-n", *TINY], cwd=fresh, capture_output=True, text=True, timeout=300)
+    message = done.stdout + done.stderr
+    assert done.returncode != 0 and "figure fig04, plot.y = 'contact_resistence'" in message
 
 
 # --- end to end: the tiny grids ----------------------------------------------------------------

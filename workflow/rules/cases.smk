@@ -9,7 +9,12 @@ FIGURES = list(config["figures"])
 SPECS = {}
 for _figure in FIGURES:
     SPECS[_figure] = lcgrid.figure_spec(_figure, config["figure_dir"], config["figures"])
-    validate(SPECS[_figure], "../schemas/figure.schema.yaml")
+    try:
+        validate(SPECS[_figure], "../schemas/figure.schema.yaml")
+    except WorkflowError as _err:  # Snakemake's words name neither the figure nor its file
+        raise lcgrid.GridError(f"figure {_figure} ({config['figure_dir']}/{_figure}.yaml, deep-merged with config "
+                               f"figures: {_figure}) does not fit workflow/schemas/figure.schema.yaml: "
+                               f"{_err.args[-1] if _err.args else _err}") from None
 GRIDS = lcgrid.expand_all(SPECS)
 # what each figure's plot: section names, checked now, not in its plot job after every solve
 _plot_problems = [problem for grid in GRIDS.values() for problem in lcplotspec.plot_problems(grid)]
