@@ -343,3 +343,12 @@ def test_a_plot_section_is_checked_against_the_dataset_it_will_draw():
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())  # every shipped figure passes
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"], config["figures"]) for f in config["figures"]}
     assert all(plot_problems(g) == [] for g in grid.expand_all(specs, root=ROOT).values())
+
+
+def test_a_figure_compared_with_one_the_config_leaves_out_is_named():
+    # found by a hostile run (thirtieth session): a raw MissingInputException in rule plot
+    specs = {"fig05": {}, "fig04p": {"compare": "fig04"}}
+    assert grid.missing_comparisons(specs) == [
+        "fig04p draws fig04 beside it (compare: fig04), which is not among the figures: add fig04 to the config's "
+        "figures, or drop fig04p"]
+    assert grid.missing_comparisons({**specs, "fig04": {}}) == []

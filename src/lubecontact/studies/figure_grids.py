@@ -222,6 +222,14 @@ class FigureGrid:
         }
 
 
+def missing_comparisons(specs: Mapping[str, Mapping]) -> list[str]:
+    """One message per figure whose ``compare: figXX`` is not among ``specs`` (the config's
+    figures): its plot job would fail on a dataset nothing builds."""
+    return [f"{name} draws {spec['compare']} beside it (compare: {spec['compare']}), which is not among the "
+            f"figures: add {spec['compare']} to the config's figures, or drop {name}"
+            for name, spec in specs.items() if spec.get("compare") and spec["compare"] not in specs]
+
+
 def expand_all(specs: Mapping[str, Mapping], root=".") -> dict[str, FigureGrid]:
     """``expand`` for several figures; figures with the same grid keys (``grid: figXX``)
     share one expansion."""
