@@ -4,12 +4,16 @@
 # it reads what the other rule files define. Snakemake renders that page with the config only, so the
 # facts go into config["_run"] (a key no config file may set: the schema forbids it).
 
+import os
 import subprocess
 
 
 def _git_state(root):
     def git(*args):
-        return subprocess.run(["git", "-C", str(root), *args], capture_output=True, text=True, timeout=20)
+        # GIT_OPTIONAL_LOCKS=0: `git status` at every parse must not take .git/index.lock,
+        # which a user's own git command running at that moment would fail on
+        return subprocess.run(["git", "-C", str(root), *args], capture_output=True, text=True, timeout=20,
+                              env={**os.environ, "GIT_OPTIONAL_LOCKS": "0"})
 
     try:
         head = git("rev-parse", "--short=12", "HEAD")
