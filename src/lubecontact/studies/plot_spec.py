@@ -30,7 +30,8 @@ def plot_problems(grid) -> list[str]:
     """Why the ``plot:`` section of ``grid`` (studies/figure_grids.FigureGrid) cannot be
     drawn, one message per problem naming the figure and the key: ``y`` must be a variable
     of the figure's dataset, ``legend.label``'s {placeholders}, ``legend.units``' keys and
-    ``map`` must be its swept coordinates, and every display unit one of DISPLAY_UNITS."""
+    ``map`` must be its swept coordinates, every display unit one of DISPLAY_UNITS, and a
+    speed of 0 needs a linear speed axis."""
     plot, where = grid.spec.get("plot") or {}, f"figure {grid.figure}, plot"
     swept = [name for dim in grid.dims[:-1] for name in dict.fromkeys((dim.name, *dim.coord_names()))]
     problems = []
@@ -49,4 +50,8 @@ def plot_problems(grid) -> list[str]:
                 problems.append(f"{where}.{section}.{coord} = {unit!r}: allowed {', '.join(DISPLAY_UNITS)}")
     problems += [f"{where}.map names {name!r}: not a swept coordinate; allowed: {', '.join(swept)}"
                  for name in plot.get("map") or [] if name not in swept]
+    at_rest = [values[0] for values in grid.dims[-1].values if values[0] == 0.0]
+    if at_rest and plot.get("kind", "curves") == "curves" and plot.get("xscale", "log") == "log":
+        problems.append(f"figure {grid.figure}, speeds: 0 m/s has no place on the logarithmic speed axis (it was "
+                        "solved and left out of the figure without a word); drop it, or set plot.xscale: linear")
     return problems
