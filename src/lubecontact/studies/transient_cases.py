@@ -105,13 +105,14 @@ def figure_cases(spec: Mapping) -> dict[str, list[dict]]:
     design chart "x" and "series"}. Raises SceneError naming a bad value."""
     out = {}
     for name, figure in spec["figures"].items():
-        if "curves" in figure:
+        kind = figure_kind(figure)
+        if kind == "curves":
             shared = figure.get("set") or {}
             out[name] = [{"label": curve["label"], "overrides": {**shared, **(curve.get("set") or {})}}
                          for curve in figure["curves"]]
-        elif "x" in figure:
+        elif kind == "design chart":
             out[name] = _design_chart(name, figure)
-        elif is_ladder(figure):
+        elif kind == "ladder":
             out[name] = ladder_cases(name, figure)
         else:
             out[name] = [{"label": name, "overrides": dict(figure["set"])}]
