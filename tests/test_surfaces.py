@@ -366,7 +366,12 @@ def test_scene_without_surface_keeps_its_canonical_form():
     [
         ({"roughness.sigma": 1e-6}, "roughness.sigma = 1e-06: set by roughness.surface"),
         ({"roughness.surface": "../maps/none.asc"}, "roughness.surface = '../maps/none.asc': "),
-        ({"roughness.surface": "../maps/raw.npy"}, "needs its size"),
+        # a scene has no --size: it is pointed to the section `lubecontact roughness` writes (a
+        # hostile run's finding, thirtieth session: it was told to "pass --size")
+        ({"roughness.surface": "../maps/raw.npy"}, "needs its size (--size LX [LY]) and unit (--unit), and a scene "
+                                                   "cannot give a file its size or unit; allowed: an instrument file, "
+                                                   "or for a raw height matrix the roughness section that `lubecontact "
+                                                   "roughness FILE --size LX [LY] --unit U --out section.yaml` writes"),
         ({"roughness.surface_cutoff": 1e-6}, "shorter than the Nyquist"),
     ],
     ids=["sigma_too", "missing_file", "raw_matrix", "cutoff_below_nyquist"],

@@ -985,10 +985,17 @@ def _measured(roughness, raw, directory: str, problems: list[str]):
         )
         return None
     from lubecontact.surfaces.measured import scene_roughness
-    from lubecontact.surfaces.reading import SurfaceError
+    from lubecontact.surfaces.reading import SizeNotGiven, SurfaceError
 
     try:
         params, digest = scene_roughness(Path(directory) / roughness.surface, roughness.surface_cutoff)
+    except SizeNotGiven as err:  # its words are the command line's (--size), which a scene has not
+        problems.append(
+            f"roughness.surface = {roughness.surface!r}: {str(err).split(';')[0]}, and a scene cannot give a file "
+            f"its size or unit; allowed: an instrument file, or for a raw height matrix the roughness section that `lubecontact "
+            f"roughness FILE --size LX [LY] --unit U --out section.yaml` writes, in place of roughness.surface"
+        )
+        return None
     except SurfaceError as err:
         problems.append(
             f"roughness.surface = {roughness.surface!r}: {err}; allowed: a surface file with its size and unit "

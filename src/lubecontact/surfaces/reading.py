@@ -34,6 +34,12 @@ class SurfaceError(ValueError):
     """A surface that cannot be used; the message says why and what is allowed."""
 
 
+class SizeNotGiven(SurfaceError):
+    """A file that gives no size or no unit of its own: a raw height matrix, which only the
+    command line can size (--size, --unit); a scene names such a surface through the
+    roughness section `lubecontact roughness` writes for it."""
+
+
 @dataclass(frozen=True)
 class Surface:
     """Heights ``z[iy, ix]`` in m (a profile has one row), sampled every ``dx`` (and ``dy``)
@@ -70,7 +76,7 @@ def read_surface(path, size=None, unit: str | None = None, periodic: bool = Fals
     digest = file_digest(path)
     if size is None:
         if path.suffix.lower() == ".npy":
-            raise SurfaceError(f"{path}: a raw height matrix needs its size (--size LX [LY]) and unit (--unit)")
+            raise SizeNotGiven(f"{path}: a raw height matrix needs its size (--size LX [LY]) and unit (--unit)")
         heights, dx, dy, periodic = _instrument(path, unit)
     else:
         _refuse_size_for_a_header_with_size(path)
@@ -96,12 +102,13 @@ def _instrument(path: Path, unit):
     except Exception as err:  # noqa: BLE001 - the reader's many errors all mean "cannot use this file"
         reason = str(err) or type(err).__name__
         if "physical_sizes" in reason:
-            reason = "the file gives no physical size; for a raw matrix pass --size LX [LY] and --unit"
+            raise SizeNotGiven(f"{path}: the file gives no physical size; for a raw matrix pass --size LX [LY] and "
+                               "--unit") from err
         raise SurfaceError(f"{path}: cannot read as an instrument file ({type(err).__name__}: {reason})") from err
     if not topography.is_uniform:
         raise SurfaceError(f"{path}: non-uniform grid (irregular x spacing); resample it onto a uniform grid first")
     if topography.unit is None:
-        raise SurfaceError(f"{path}: the file gives no length unit; for a raw matrix pass --size and --unit")
+        raise SizeNotGiven(f"{path}: the file gives no length unit; for a raw matrix pass --size and --unit")
     if topography.has_undefined_data:
         missing = int(np.ma.count_masked(topography.heights()))
         raise SurfaceError(f"{path}: {missing} undefined (NaN) points; fill or crop the gaps first")
