@@ -69,6 +69,8 @@ def parse_speeds(text: str) -> list[float]:
 
     import numpy as np
 
+    from lubecontact.studies.sweep import repeated_speeds
+
     allowed = (f"allowed: a comma list of finite speeds >= 0 m/s (0.001,0.01,0.1) or START:STOP:N with 0 < START, "
                f"STOP finite and 1 <= N <= {MAX_SPEEDS} (1e-4:10:25)")
     shown = text if len(text) <= 80 else f"{text[:40]}...{text[-20:]} ({len(text)} characters)"
@@ -86,7 +88,7 @@ def parse_speeds(text: str) -> list[float]:
         speeds = [float(v) for v in text.split(",") if v.strip()]
         if not speeds or not all(math.isfinite(v) and v >= 0 for v in speeds):
             raise ValueError("empty, not finite or negative")
-        twice = sorted({v for v in speeds if speeds.count(v) > 1})
+        twice = repeated_speeds(speeds)
         if twice:
             raise ValueError(f"{', '.join(f'{v:g}' for v in twice)} listed more than once (each speed once)")
         return speeds

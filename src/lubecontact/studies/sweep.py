@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from collections import Counter
 from collections.abc import Sequence
 from dataclasses import fields
 
@@ -27,8 +28,9 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
     speeds = np.asarray(sorted(float(s) for s in speeds))
     if speeds.size == 0 or np.any(~np.isfinite(speeds)) or np.any(speeds < 0):
         raise ValueError(f"speeds must be finite and >= 0 m/s, got {speeds.tolist()}")
-    if np.any(np.diff(speeds) == 0):  # the speed coordinate must be strictly monotonic (CF)
-        raise ValueError(f"each speed once: {speeds[1:][np.diff(speeds) == 0].tolist()} listed twice")
+    twice = repeated_speeds(speeds)
+    if twice:  # the speed coordinate must be strictly monotonic (CF)
+        raise ValueError(f"each speed once: {twice} listed twice")
     if progress is None:
         progress = sys.stderr.isatty()
     cases, flagged = [], []
@@ -55,6 +57,12 @@ def sweep(scene, speeds: Sequence[float], fields: bool = False, warm_start: bool
     out.attrs["validity_notes"] = "\n".join(flagged)  # each point's flags (they differ: concat drops them)
     out.attrs["effects_run"] = effects_run_by_any([ds.attrs["effects_run"] for ds in cases], scene)
     return out
+
+
+def repeated_speeds(speeds: Sequence[float]) -> list[float]:
+    """The speeds given more than once, ascending: a sweep's speed coordinate must be
+    strictly monotonic (CF), so the CLI (--speeds) and ``sweep`` refuse them."""
+    return sorted(float(v) for v, n in Counter(float(v) for v in speeds).items() if n > 1)
 
 
 def effects_run_by_any(runs: Sequence[str], scene) -> str:
