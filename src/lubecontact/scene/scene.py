@@ -991,7 +991,7 @@ def _measured(roughness, raw, directory: str, problems: list[str]):
         params, digest = scene_roughness(Path(directory) / roughness.surface, roughness.surface_cutoff)
     except SizeNotGiven as err:  # its words are the command line's (--size), which a scene has not
         problems.append(
-            f"roughness.surface = {roughness.surface!r}: {str(err).split(';')[0]}, and a scene cannot give a file "
+            f"roughness.surface = {roughness.surface!r}: {err.what}, and a scene cannot give a file "
             f"its size or unit; allowed: an instrument file, or for a raw height matrix the roughness section that `lubecontact "
             f"roughness FILE --size LX [LY] --unit U --out section.yaml` writes, in place of roughness.surface"
         )

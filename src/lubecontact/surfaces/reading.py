@@ -37,7 +37,12 @@ class SurfaceError(ValueError):
 class SizeNotGiven(SurfaceError):
     """A file that gives no size or no unit of its own: a raw height matrix, which only the
     command line can size (--size, --unit); a scene names such a surface through the
-    roughness section `lubecontact roughness` writes for it."""
+    roughness section `lubecontact roughness` writes for it. ``what`` is the fact without
+    the command line's advice (``advice``, appended to the message)."""
+
+    def __init__(self, what: str, advice: str = ""):
+        self.what = what
+        super().__init__(f"{what}; {advice}" if advice else what)
 
 
 @dataclass(frozen=True)
@@ -102,13 +107,13 @@ def _instrument(path: Path, unit):
     except Exception as err:  # noqa: BLE001 - the reader's many errors all mean "cannot use this file"
         reason = str(err) or type(err).__name__
         if "physical_sizes" in reason:
-            raise SizeNotGiven(f"{path}: the file gives no physical size; for a raw matrix pass --size LX [LY] and "
-                               "--unit") from err
+            raise SizeNotGiven(f"{path}: the file gives no physical size",
+                               "for a raw matrix pass --size LX [LY] and --unit") from err
         raise SurfaceError(f"{path}: cannot read as an instrument file ({type(err).__name__}: {reason})") from err
     if not topography.is_uniform:
         raise SurfaceError(f"{path}: non-uniform grid (irregular x spacing); resample it onto a uniform grid first")
     if topography.unit is None:
-        raise SizeNotGiven(f"{path}: the file gives no length unit; for a raw matrix pass --size and --unit")
+        raise SizeNotGiven(f"{path}: the file gives no length unit", "for a raw matrix pass --size and --unit")
     if topography.has_undefined_data:
         missing = int(np.ma.count_masked(topography.heights()))
         raise SurfaceError(f"{path}: {missing} undefined (NaN) points; fill or crop the gaps first")
