@@ -42,17 +42,18 @@ localrules:
     transient_figure,
 
 
-# The other netCDF products, each beside its own memo of files found complete: one that
+# The netCDF products besides the cases: each is a target of rule all, and at start one that
 # does not read back (truncated by a full disk, overwritten) is moved to .corrupt/ beside it,
-# as an incomplete case is (cases.smk), so a rerun builds it again instead of failing on it.
+# each folder with its own memo of files found complete, as an incomplete case is
+# (cases.smk), so a rerun builds it again instead of failing on it.
+DATASETS = [
+    *(f"{RESULTS}/data/{name}.nc" for name in [*FIGURES, "accuracy_cost", *(f"transient_{n}" for n in TRANSIENT_LADDERS)]),
+    f"{RESULTS}/accuracy/study.nc",
+    *(f"{RESULTS}/transient/{case}.nc" for case in TRANSIENT_OVERRIDES),
+]
 if _main_process:
-    PRODUCTS = {
-        f"{RESULTS}/data": [f"{RESULTS}/data/{name}.nc" for name in
-                            [*FIGURES, "accuracy_cost", *(f"transient_{ladder}" for ladder in TRANSIENT_LADDERS)]],
-        f"{RESULTS}/accuracy": [f"{RESULTS}/accuracy/study.nc"],
-        f"{RESULTS}/transient": [f"{RESULTS}/transient/{case}.nc" for case in TRANSIENT_OVERRIDES],
-    }
-    for _folder, _paths in PRODUCTS.items():
+    for _folder in dict.fromkeys(str(Path(p).parent) for p in DATASETS):
+        _paths = [p for p in DATASETS if str(Path(p).parent) == _folder]
         for _line in lccases.quarantine_datasets(_paths, f"{_folder}/.complete.json"):
             print(f"lubecontact: {_line}", file=sys.stderr)
 
@@ -65,12 +66,9 @@ rule all:
         expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=FIGURES, ext=["png", "pdf"]),
         expand(f"{RESULTS}/figures/accuracy_cost.{{ext}}", ext=["png", "pdf"]),
         f"{RESULTS}/data/accuracy_cost.md",
-        expand(f"{RESULTS}/data/{{figure}}.nc", figure=FIGURES),
-        f"{RESULTS}/data/accuracy_cost.nc",
-        f"{RESULTS}/accuracy/study.nc",
+        DATASETS,
         ALL_CASES.values(),
         expand(f"{RESULTS}/figures/surfaces_psd.{{ext}}", ext=["png", "pdf"]) if SURFACE_FILES else [],
         expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=TRANSIENT_FIGURES, ext=["png", "pdf"]),
-        expand(f"{RESULTS}/data/transient_{{name}}.{{ext}}", name=TRANSIENT_LADDERS, ext=["nc", "md"]),
-        expand(f"{RESULTS}/transient/{{case}}.nc", case=TRANSIENT_OVERRIDES),
+        expand(f"{RESULTS}/data/transient_{{name}}.md", name=TRANSIENT_LADDERS),
     default_target: True
