@@ -13,32 +13,33 @@ from lubecontact.unsteady.dynamics import BaseExcitation
 from lubecontact.unsteady.motion import SpeedHistory
 from lubecontact.unsteady.transient import MESH_ERROR_UNSEEN, no_reconnection_note, reconnection_start, transient
 
+WIDTH = len("reconnect_time_extrapolated")  # the summary's names, right-aligned on their '='
 SUMMARY = ("reconnect_time", "rest_resistance", "open_fraction", "steps", "rejected_steps", "coupled_solves", "solve_time")
 
 
 def summary(ds) -> str:
     r = ds["contact_resistance"].values
-    lines = [f"{'time':>22s} = 0 .. {ds['time'].values[-1]:.6g} s",
-             f"{'contact_resistance':>22s} = {r.min():.4g} .. {r.max():.4g} ohm"]
+    lines = [f"{'time':>{WIDTH}s} = 0 .. {ds['time'].values[-1]:.6g} s",
+             f"{'contact_resistance':>{WIDTH}s} = {r.min():.4g} .. {r.max():.4g} ohm"]
     for name in SUMMARY:
         var = ds[name]
         units = "" if var.attrs["units"] == "1" else f" {var.attrs['units']}"
-        lines.append(f"{name:>22s} = {var.item():.6g}{units}")
+        lines.append(f"{name:>{WIDTH}s} = {var.item():.6g}{units}")
     jumped = ds["reconnect_time_jumps"].item() if "reconnect_time_jumps" in ds else 0.0
     if jumped > 0.0:
-        lines.append(f"{'reconnect_time_jumps':>22s} = {jumped:.3g} s (impasse jumps before the reconnection: "
+        lines.append(f"{'reconnect_time_jumps':>{WIDTH}s} = {jumped:.3g} s (impasse jumps before the reconnection: "
                      "reconnect_time is uncertain by their length)")
     if "reconnect_time_error" in ds:
-        lines.append(f"{'reconnect_time_error':>22s} = {ds['reconnect_time_error'].item():.3g} s "
+        lines.append(f"{'reconnect_time_error':>{WIDTH}s} = {ds['reconnect_time_error'].item():.3g} s "
                      f"(time integration, from a run at motion.tolerance / 10)")
     if "reconnect_time_mesh_error" in ds:
         error = ds["reconnect_time_mesh_error"].item()
-        lines.append(f"{'reconnect_time_mesh_error':>22s} = {error:+.3g} s "
+        lines.append(f"{'reconnect_time_mesh_error':>{WIDTH}s} = {error:+.3g} s "
                      f"(the converged value minus this run's, from a run on a mesh twice as fine along x)")
         if math.isfinite(error):
-            lines.append(f"{'':>22s}   so the converged reconnect time is about "
-                         f"{ds['reconnect_time'].item() + error:.6g} s")
-    lines.append(f"{'converged':>22s} = {'yes' if ds['converged'].item() == 1 else 'NO'}")
+            lines.append(f"{'reconnect_time_extrapolated':>{WIDTH}s} = {ds['reconnect_time_extrapolated'].item():.6g} s "
+                         "(reconnect_time on a converged mesh: reconnect_time + reconnect_time_mesh_error)")
+    lines.append(f"{'converged':>{WIDTH}s} = {'yes' if ds['converged'].item() == 1 else 'NO'}")
     return "\n".join(lines)
 
 
@@ -59,15 +60,22 @@ def explained(ds, scene) -> list[str]:
                      f"(motion.duration = {motion.duration:g} s; R stayed above {motion.reconnect_factor:g} x "
                      "rest_resistance)")
     if MESH_ERROR_UNSEEN in ds.attrs["notes"]:
-        lines.append("  reconnect_time: its mesh error is not estimated (motion.mesh_error_bar: true), and on the "
+        lines.append("  reconnect_time: its mesh error is not estimated (motion.mesh_error_bar: false), and on the "
                      "default mesh it is most of the error (docs/physics.md section 14)")
+    if "reconnect_time_extrapolated" in ds and math.isnan(ds["reconnect_time_extrapolated"].item()):
+        error = ds["reconnect_time_mesh_error"].item()
+        if math.isfinite(reconnect) and math.isfinite(error):
+            lines.append(f"  reconnect_time_extrapolated = nan: the mesh error estimate ({error:+.3g} s) is as large as "
+                         "reconnect_time itself: the mesh is outside the range where its error is first order, so "
+                         "nothing is extrapolated (the file's notes give both runs; refine motion.rest_refinement, or "
+                         "mesh.nx on an explicit domain)")
     for name, second in (("reconnect_time_error", "at motion.tolerance / 10"),
                          ("reconnect_time_mesh_error", "on a mesh twice as fine along x")):
         if name in ds and math.isnan(ds[name].item()) and math.isfinite(reconnect):
             lines.append(f"  {name} = nan: the second run {second} did not converge or did not reconnect within "
                          f"motion.duration (its outcome is in the file's notes)")
     valid = ds["valid"].values == 1
-    lines.append(f"{'valid':>22s} = " + ("yes at every instant (every sub-model within its range)" if valid.all() else
+    lines.append(f"{'valid':>{WIDTH}s} = " + ("yes at every instant (every sub-model within its range)" if valid.all() else
                                          f"NO at {int((~valid).sum())} of {valid.size} instants: left a sub-model's ground"))
     lines += [f"  validity {line}" for line in ds.attrs["validity_notes"].splitlines()]
     if math.isnan(fraction):
@@ -86,7 +94,7 @@ def events_summary(ds, scene) -> list[str]:
         ("relative_", ds["relative_threshold"].item(),
          f"{scene.motion.reconnect_factor:g} x rest_resistance, motion.reconnect_factor"),
     )
-    lines = [f"{'events':>22s} = intervals with contact_resistance above a threshold for at least "
+    lines = [f"{'events':>{WIDTH}s} = intervals with contact_resistance above a threshold for at least "
              f"{shortest:.3g} s (interface.min_event_duration)"]
     for prefix, threshold, source in thresholds:
         count = ds[f"{prefix}event_count"].item()

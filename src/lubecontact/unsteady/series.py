@@ -58,6 +58,9 @@ SCALARS = {
     "reconnect_time_mesh_error": ("s", "estimated mesh error of reconnect_time (motion.mesh_error_bar): the "
                                        "converged value minus this run's, from a second run on a mesh twice as fine "
                                        "along x, first order in the node spacing"),
+    "reconnect_time_extrapolated": ("s", "reconnect_time on a converged mesh, estimated: reconnect_time + "
+                                         "reconnect_time_mesh_error (motion.mesh_error_bar; nan where either is not "
+                                         "finite)"),
     "open_fraction": ("1", "oscillation: fraction of the oscillation time within events above the open resistance"),
     "relative_threshold": ("ohm", "relative event threshold: the reconnection factor x the resistance at rest"),
     "min_event_duration": ("s", "shortest time above a threshold that counts as an event"),

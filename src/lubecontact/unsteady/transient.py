@@ -137,9 +137,9 @@ MESH_ERROR_ORDER = 1.0
 # said with every reconnect time whose mesh error was not estimated: on the Table 1 stop it is
 # most of the default mesh's error (docs/physics.md section 14, "Error bar of a reconnect time")
 MESH_ERROR_UNSEEN = ("reconnect_time is short by the mesh's error, first order in the spacing along x at rest and "
-                     "on the Table 1 stop's default mesh most of its error: motion.mesh_error_bar: true estimates it "
-                     "from a second run on a mesh twice as fine (docs/physics.md section 14, \"Error bar of a "
-                     "reconnect time\")")
+                     "on the Table 1 stop's default mesh most of its error: with motion.mesh_error_bar off it "
+                     "is not estimated; on (the default), a second run on a mesh twice as fine estimates it "
+                     "(docs/physics.md section 14, \"Error bar of a reconnect time\")")
 
 
 def tighter_scene(scene):
@@ -196,9 +196,10 @@ def no_reconnection_note(scene, history, base) -> str:
             f"reconnect; lengthen motion.duration so that the run goes on past it")
 
 
-def second_reconnect_time(scene, history, since: float, progress: bool, rest: float | None = None) -> float:
-    """reconnect_time of ``scene`` along ``history``, counted from ``since``
-    (reconnection_start; NaN if the run fails), to ``rest`` times
+def second_reconnect_time(scene, history, since: float, progress: bool, rest: float | None = None) -> tuple[float, str]:
+    """(reconnect_time of ``scene`` along ``history``, counted from ``since``
+    (reconnection_start; NaN if the run fails), why it failed or was interrupted, "" if it
+    did not), to ``rest`` times
     motion.reconnect_factor, or to the run's own resistance at rest where ``rest`` is None
     (a finer mesh's, whose resting resistance is its own). The run ends at its first level
     at rest at or below that threshold: reconnect_time is the first crossing, located between
@@ -223,9 +224,19 @@ def second_reconnect_time(scene, history, since: float, progress: bool, rest: fl
 
     levels, failure = integrator.run(progress, report=None if progress else _to_stderr, until=reconnected)
     if failure:
-        return math.nan
+        return math.nan, failure
     times = [lv.time for lv in levels]
-    return reconnect_time(times, [resistance_of(lv) for lv in levels], since, threshold, dense_resistance(levels))
+    return reconnect_time(times, [resistance_of(lv) for lv in levels], since, threshold, dense_resistance(levels)), ""
+
+
+def second_run_outcome(value: float, failure: str, what: str) -> str:
+    """What a second run (second_reconnect_time: its reconnect time ``value`` and ``failure``)
+    gave, in words for the notes; ``what`` is the bar it makes ("mesh error", "error bar")."""
+    if not failure:
+        return f"{value!r} s there"
+    if failure.startswith("interrupted"):
+        return f"it was interrupted ({failure}), so no {what} is given"
+    return f"it did not converge ({failure}), so no {what} is given"
 
 
 def mesh_error(value: float, finer: float | None) -> float:
@@ -236,6 +247,32 @@ def mesh_error(value: float, finer: float | None) -> float:
         return math.nan
     gain = 2.0**MESH_ERROR_ORDER
     return (finer - value) * gain / (gain - 1.0)
+
+
+def extrapolated(value: float, error: float) -> float:
+    """reconnect_time_extrapolated (s): ``value`` plus its mesh error ``error`` (mesh_error),
+    NaN where either is not finite or where the error is as large as the value itself
+    (``unextrapolated_note`` says why). A first-order estimate that moves a reconnect time by
+    all of it, to zero or below or to twice as long, says that the mesh is outside the range
+    where its error is first order: there it extrapolates nothing. Found on the smooth grease
+    line stop (stop_grease.yaml, sigma = 0.1 um, 51 x 1): 64.6 s on the mesh, 23.6 s on the
+    mesh at rest twice as fine, and -17.5 s extrapolated (thirty-first session)."""
+    if not (math.isfinite(value) and math.isfinite(error)) or abs(error) >= value:
+        return math.nan
+    return value + error
+
+
+def unextrapolated_note(value: float, finer: float, error: float, finer_words: str) -> str:
+    """Why reconnect_time_extrapolated is NaN where both runs reconnected (``value`` this run's,
+    ``finer`` the second run's on ``finer_words``, ``error`` the mesh error: ``extrapolated``),
+    "" where it is not."""
+    if not (math.isfinite(value) and math.isfinite(error)) or abs(error) < value:
+        return ""
+    return (f"reconnect_time_extrapolated = nan: the second run on {finer_words} reconnected at "
+            f"{finer:.6g} s against this run's "
+            f"{value:.6g} s, a mesh error estimate ({error:+.3g} s) as large as the reconnect time itself: the mesh is "
+            "outside the range where its error is first order, so nothing is extrapolated. Refine the mesh where the "
+            "film drains (motion.rest_refinement, or mesh.nx on an explicit domain) and run again")
 
 
 def integration_error(value: float, tighter: float | None) -> float:
@@ -303,7 +340,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     simulated time. A step that fails ends the run, and so does an interruption (Ctrl-C, or
     SIGTERM where the caller turns it into KeyboardInterrupt): the levels so far are
     returned with ``converged = 0``, the reason in ``notes`` and, when interrupted, the
-    attribute ``interrupted = 1``.
+    attribute ``interrupted = 1``. A run that converged and reconnected runs again for its
+    error bars: on the mesh at rest twice as fine by default (motion.mesh_error_bar, which gives
+    reconnect_time_extrapolated), and at a tenth of the tolerance (motion.error_bar).
     """
     scene = prepare(scene).scene
     problems = motion_problems(scene)
@@ -317,17 +356,7 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         integrator = TimeIntegrator(scene, history)
         levels, failure = integrator.run(progress, report=None if progress else _to_stderr)
         rest = _rest_resistance(integrator)
-        since = reconnection_start(history, integrator.base)
-        tight = finer = None
-        if since is not None and not failure:
-            if scene.motion.error_bar:
-                tighter, tighter_words = tighter_scene(scene)
-                _to_stderr(f"error bar: a second run at {tighter_words}")
-                tight = second_reconnect_time(tighter, history, since, progress, rest)
-            if scene.motion.mesh_error_bar:
-                finer_scene, finer_mesh = finer_mesh_scene(scene)
-                _to_stderr(f"mesh error bar: a second run on {finer_mesh}")
-                finer = second_reconnect_time(finer_scene, history, since, progress)
+    since = reconnection_start(history, integrator.base)
     threshold = open_resistance(scene)
     series_t = np.array([lv.time for lv in levels])
     notes = []
@@ -356,17 +385,36 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     if failure and math.isinf(recon):
         recon = math.nan  # the run ended early: "not within duration" is unknown
     scalars["reconnect_time"] = recon
+    tight = finer = None
+    tight_failure = finer_failure = ""
+    # a second run has nothing to bracket where the first did not reconnect, and none starts
+    # after a run that failed or was interrupted
+    if math.isfinite(recon) and not failure:
+        with one_blas_thread():
+            if scene.motion.error_bar:
+                tighter, tighter_words = tighter_scene(scene)
+                _to_stderr(f"error bar: a second run at {tighter_words}")
+                tight, tight_failure = second_reconnect_time(tighter, history, since, progress, rest)
+            if scene.motion.mesh_error_bar:
+                finer_scene, finer_mesh = finer_mesh_scene(scene)
+                _to_stderr(f"mesh error bar: a second run on {finer_mesh}")
+                finer, finer_failure = second_reconnect_time(finer_scene, history, since, progress)
     if scene.motion.error_bar:
         scalars["reconnect_time_error"] = integration_error(recon, tight)
     if tight is not None:
-        notes.append(f"reconnect_time error bar from a second run at {tighter_words}: {tight!r} s there")
+        notes.append(f"reconnect_time error bar from a second run at {tighter_words}: "
+                     + second_run_outcome(tight, tight_failure, "error bar"))
     if scene.motion.mesh_error_bar:
         scalars["reconnect_time_mesh_error"] = mesh_error(recon, finer)
+        scalars["reconnect_time_extrapolated"] = extrapolated(recon, scalars["reconnect_time_mesh_error"])
     elif math.isfinite(recon) and recon > 0.0:
         notes.append(MESH_ERROR_UNSEEN)
     if finer is not None:
-        there = "it did not converge, so no mesh error is given" if math.isnan(finer) else f"{finer!r} s there"
-        notes.append(f"reconnect_time mesh error from a second run on {finer_mesh}: {there}")
+        notes.append(f"reconnect_time mesh error from a second run on {finer_mesh}: "
+                     + second_run_outcome(finer, finer_failure, "mesh error"))
+        unextrapolated = unextrapolated_note(recon, finer, scalars["reconnect_time_mesh_error"], finer_mesh)
+        if unextrapolated:
+            notes.append(unextrapolated)
     # discontinuity events above the open resistance and above reconnect_factor x rest: the
     # reconnected state of reconnect_time is the end of a relative event (docs/DESIGN.md "Time")
     min_duration = scene.interface.min_event_duration
