@@ -44,6 +44,9 @@ ROOT = Path(__file__).resolve().parents[1]
 SCENES = ROOT / "config" / "scenes"
 # A stop from 1 m/s over 1 ms (motion.ramp's default), reconnected at 2 x the resting resistance
 TABLE1_STOP = {"motion.kind": "stop", "motion.speed": 1.0}
+# a row that compares its run with another row's on the same mesh: the one run, without the
+# mesh error bar the default adds (a second run of about three times the first's CPU)
+ALONE = {"motion.mesh_error_bar": False}
 OIL = 0.1  # s simulated: the oils reconnect within milliseconds
 GREASE = 1000.0  # s simulated: the greases within seconds
 
@@ -54,41 +57,48 @@ PERCOLATION_EXPONENT = PERCOLATION_ALTERNATIVES[1]
 RECONNECT = {
     "table1": ("0.1 Pa s oil (Table 1)", "table1.yaml", {**TABLE1_STOP, "motion.duration": OIL}),
     "table1_101": ("0.1 Pa s oil (Table 1), 101 × 101 nodes", "table1.yaml",
-                   {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": 101, "mesh.ny": 101}),
+                   {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": 101, "mesh.ny": 101, **ALONE}),
     "table1_rest4": ("0.1 Pa s oil (Table 1), the mesh at rest 4 times finer along x", "table1.yaml",
-                     {**TABLE1_STOP, "motion.duration": OIL, "motion.rest_refinement": 4}),
+                     {**TABLE1_STOP, "motion.duration": OIL, "motion.rest_refinement": 4, **ALONE}),
     "vg100": ("ISO VG 100 mineral oil, 0.087 Pa s (`stop_hydrocarbon_oil.yaml`)", "stop_hydrocarbon_oil.yaml", {"motion.duration": OIL}),
     "grease": ("grease-like, 10 Pa s (`stop_grease.yaml`)", "stop_grease.yaml", {"motion.duration": GREASE}),
-    "grease_1N": ("grease-like, 10 Pa s, F = 1 N", "stop_grease.yaml", {"motion.duration": GREASE, "operating.force": 1.0}),
-    "grease_R50": ("grease-like, 10 Pa s, R = 50 mm", "stop_grease.yaml", {"motion.duration": GREASE, "geometry.radius": 0.05}),
+    "grease_1N": ("grease-like, 10 Pa s, F = 1 N", "stop_grease.yaml",
+                  {"motion.duration": GREASE, "operating.force": 1.0, **ALONE}),
+    "grease_R50": ("grease-like, 10 Pa s, R = 50 mm", "stop_grease.yaml",
+                   {"motion.duration": GREASE, "geometry.radius": 0.05, **ALONE}),
     # at 51 x 51 this one takes minutes (ms steps at ~0.5 s each near contact): a line contact
     "grease_smooth": ("grease-like, 10 Pa s, σ = 0.1 µm (line contact, 51 × 1)", "stop_grease.yaml",
-                      {"motion.duration": GREASE, "roughness.sigma": 0.1e-6, "mesh.ny": 1}),
+                      {"motion.duration": GREASE, "roughness.sigma": 0.1e-6, "mesh.ny": 1, **ALONE}),
     "grease_100": ("100 Pa s (a grease's apparent viscosity near rest)", "stop_grease.yaml",
-                   {"motion.duration": GREASE, "lubricant.viscosity": 100.0}),
+                   {"motion.duration": GREASE, "lubricant.viscosity": 100.0, **ALONE}),
 }
 # the Table 1 oil, the ISO VG 100 oil and the grease again, with the flow below h/sigma = 0.5
 # at PERCOLATION_EXPONENT: how much each reconnect time rests on that law
 PERCOLATION_ROWS = ("table1", "vg100", "grease")
-# the same three with their error bars (motion.error_bar and motion.mesh_error_bar): the
-# reconnect table's last column; each such run is the row's run again, plus its second runs
+# Those three rows are default runs, with the mesh error bar the default adds. The same three
+# with the time-integration error bar too (motion.error_bar), the reconnect table's last column,
+# and alone (without the mesh error bar), what the default's second run costs: each such run is
+# the row's run again, with other second runs
 RECONNECT |= {f"{name}_bars": (f"{RECONNECT[name][0]}, with its error bars", RECONNECT[name][1],
                                {**RECONNECT[name][2], "motion.error_bar": True, "motion.mesh_error_bar": True})
               for name in PERCOLATION_ROWS}
+RECONNECT |= {f"{name}_alone": (f"{RECONNECT[name][0]}, the run alone", RECONNECT[name][1], {**RECONNECT[name][2], **ALONE})
+              for name in PERCOLATION_ROWS}
 RECONNECT |= {f"{name}_percolation": (f"{RECONNECT[name][0]}, flow below h/σ = 0.5 with exponent {PERCOLATION_EXPONENT:g}",
                                       RECONNECT[name][1],
-                                      {**RECONNECT[name][2], "roughness.percolation_exponent": PERCOLATION_EXPONENT})
+                                      {**RECONNECT[name][2], "roughness.percolation_exponent": PERCOLATION_EXPONENT,
+                                       **ALONE})
               for name in PERCOLATION_ROWS}
 # the same three at half the default motion.tolerance (the finest of the accuracy study's
 # tolerance ladder; a tenth, motion.error_bar's, costs minutes on 51 x 51): how far the
 # default's time-integration error reaches at least, on each
 TIGHTER = load_scene(SCENES / "table1.yaml").motion.tolerance / 2.0
 RECONNECT |= {f"{name}_tight": (f"{RECONNECT[name][0]}, motion.tolerance {TIGHTER:g}", RECONNECT[name][1],
-                                {**RECONNECT[name][2], "motion.tolerance": TIGHTER})
+                                {**RECONNECT[name][2], "motion.tolerance": TIGHTER, **ALONE})
               for name in PERCOLATION_ROWS}
 LINE_NODES = (31, 41, 51, 75, 101)  # Table 1 as a line contact (ny = 1): the mesh dependence
 # cheap enough for the test (seconds): name -> the run whose reconnect time it is
-CHECKED = {"line31": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": 31, "mesh.ny": 1})}
+CHECKED = {"line31": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": 31, "mesh.ny": 1, **ALONE})}
 
 
 def stop(scene_file: str, overrides: dict) -> dict:
@@ -109,6 +119,7 @@ def stop(scene_file: str, overrides: dict) -> dict:
             "stop_film": closed_form_stop_film(scene, film_at_stop(ds)),
             "open": bool((ds["contact_resistance"].values[at_rest] > float(ds["open_resistance"])).all()),
             "mesh_error": float(ds["reconnect_time_mesh_error"]) if "reconnect_time_mesh_error" in ds else None,
+            "extrapolated": float(ds["reconnect_time_extrapolated"]) if "reconnect_time_extrapolated" in ds else None,
             "time_error": float(ds["reconnect_time_error"]) if "reconnect_time_error" in ds else None,
             "steps": int(ds["steps"]), "rejected": int(ds["rejected_steps"]),
             "solves": int(ds["coupled_solves"]), "cpu": cpu}
@@ -150,7 +161,7 @@ def transient_runs(record: Path, resume: bool = False, log=print, stops: dict | 
     killed half-way goes on from there)."""
     if stops is None:
         stops = {name: (scene_file, overrides) for name, (_, scene_file, overrides) in RECONNECT.items()}
-        stops |= {f"line{n}": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": n, "mesh.ny": 1})
+        stops |= {f"line{n}": ("table1.yaml", {**TABLE1_STOP, "motion.duration": OIL, "mesh.nx": n, "mesh.ny": 1, **ALONE})
                   for n in LINE_NODES}
     done = json.loads(record.read_text()) if resume and record.is_file() else {"when": measured_on(), "runs": {}}
     for name, (scene_file, overrides) in stops.items():
@@ -172,6 +183,11 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
     when, runs = done["when"], done["runs"]
     lines = {n: runs[f"line{n}"] for n in LINE_NODES}
 
+    def extrapolated(name):
+        """The row's reconnect time on a converged mesh (a default run's), '' for a row run alone."""
+        value = runs[name]["extrapolated"]
+        return "" if value is None else seconds(value)
+
     def bars(name):
         """The row's error bars (its _bars run), '' for a row without."""
         barred = runs.get(f"{name}_bars")
@@ -179,22 +195,25 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
             return ""
         return f"+{seconds(barred['mesh_error'])} (mesh), ±{seconds(barred['time_error'])} (time)"
 
-    rows = [f"| {label} | {num(runs[name]['film'] * 1e6)} µm | {seconds(runs[name]['reconnect'])} | {bars(name)} | "
-            f"{runs[name]['steps']} ({runs[name]['rejected']}) |" for name, (label, _, _) in RECONNECT.items()
-            if not name.endswith("_bars")]  # a _bars run is its row's run again: its bars are the row's column
+    # a _bars or _alone run is its row's run again: its bars and its CPU are the row's columns and text
+    rows = [f"| {label} | {num(runs[name]['film'] * 1e6)} µm | {seconds(runs[name]['reconnect'])} | "
+            f"{extrapolated(name)} | {bars(name)} | {runs[name]['steps']} ({runs[name]['rejected']}) |"
+            for name, (label, _, _) in RECONNECT.items() if not name.endswith(("_bars", "_alone"))]
     r = {name: run["reconnect"] for name, run in runs.items()}
     law = {name: r[f"{name}_percolation"] / r[name] - 1.0 for name in PERCOLATION_ROWS}  # relative changes
     tight = {name: r[f"{name}_tight"] / r[name] - 1.0 for name in PERCOLATION_ROWS}  # half the tolerance
     mesh_change = r["table1_101"] / r["table1"] - 1.0
-    cost_of_bars = {name: runs[f"{name}_bars"]["cpu"] / runs[name]["cpu"] for name in PERCOLATION_ROWS}
+    cost_of_bars = {name: runs[f"{name}_bars"]["cpu"] / runs[f"{name}_alone"]["cpu"] for name in PERCOLATION_ROWS}
+    cost_of_default = {name: runs[name]["cpu"] / runs[f"{name}_alone"]["cpu"] for name in PERCOLATION_ROWS}
     more_or_less = "more" if abs(law["table1"]) > abs(mesh_change) else "less"
     reconnect = "\n".join([
         "Measured (`scripts/doc_numbers.py --runs`, 51 × 51 nodes unless noted; stop from 1 m/s over 1 ms, "
         "reconnected at 2 × the resting resistance; steps of the whole run, "
         f"{OIL:g} s after the stop for the oils, {GREASE:g} s for the greases):",
         "",
-        "| contact (Table 1 unless noted) | film at 1 m/s | reconnect_time | error bars | steps (rejected) |",
-        "|---|---|---|---|---|",
+        "| contact (Table 1 unless noted) | film at 1 m/s | reconnect_time | reconnect_time_extrapolated | error bars "
+        "| steps (rejected) |",
+        "|---|---|---|---|---|---|",
         *rows,
         "",
         f"Ten times the viscosity waits {num(r['grease_100'] / r['grease'])} times longer (10 → 100 Pa s); "
@@ -203,16 +222,20 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
         f"{later(r['table1_101'], r['table1'])} than at 51 × 51 ({percent(mesh_change)}), with only its mesh at rest "
         f"refined four times {percent(r['table1_rest4'] / r['table1'] - 1.0)} (`motion.rest_refinement`: the film "
         f"drains at rest, docs/physics.md section 14, \"The mesh at rest\"; "
-        f"{num(runs['table1_rest4']['cpu'] / runs['table1']['cpu'])} times the CPU time).",
+        f"{num(runs['table1_rest4']['cpu'] / runs['table1_alone']['cpu'])} times the CPU time of the run alone).",
         "",
-        "The error bars are the run's own estimates (\"Error bars\" under \"Time\" above): `motion.mesh_error_bar`'s, "
-        "the converged value minus the run's, from a second run with the mesh at rest twice as fine, and "
-        "`motion.error_bar`'s time-integration error, from a second run at a tenth of the tolerance. "
-        f"The Table 1 stop is then {seconds(r['table1'] + runs['table1_bars']['mesh_error'])} with its mesh error, "
-        f"against {seconds(r['table1_rest4'])} with the mesh at rest four times finer (itself short by its own "
-        "mesh error: docs/physics.md section 14, \"Error bar of a reconnect time\"). A run with both bars took "
-        f"{num(cost_of_bars['table1'])} times the CPU time of the run alone for the Table 1 oil, "
-        f"{num(cost_of_bars['vg100'])} for the ISO VG 100 oil and {num(cost_of_bars['grease'])} for the grease.",
+        "The error bars are the run's own estimates (\"Error bars\" under \"Time\" above): `motion.mesh_error_bar`'s "
+        "(on by default), the converged value minus the run's, from a second run with the mesh at rest twice as "
+        "fine, and `motion.error_bar`'s time-integration error, from a second run at a tenth of the tolerance. "
+        "The rows with a `reconnect_time_extrapolated` are default runs; the others are one run each, with "
+        "`motion.mesh_error_bar: false`, compared with their row on the same mesh. "
+        f"The Table 1 stop's default run gives {seconds(runs['table1']['extrapolated'])}, against "
+        f"{seconds(r['table1_rest4'])} with the mesh at rest four times finer (itself short by its own "
+        "mesh error: docs/physics.md section 14, \"Error bar of a reconnect time\", gives where the converged "
+        f"value lies). A default run took {num(cost_of_default['table1'])} times the CPU time of the run alone "
+        f"for the Table 1 oil, {num(cost_of_default['vg100'])} for the ISO VG 100 oil and "
+        f"{num(cost_of_default['grease'])} for the grease; a run with both bars {num(cost_of_bars['table1'])}, "
+        f"{num(cost_of_bars['vg100'])} and {num(cost_of_bars['grease'])} times.",
         "",
         f"The pressure flow below h/σ = 0.5 is the model's own interpolation to the percolation threshold "
         f"(docs/physics.md section 15). With 2-D percolation's conductivity exponent {PERCOLATION_EXPONENT:g} "
@@ -242,10 +265,12 @@ def transient_blocks(record: Path, resume: bool = False, log=print) -> dict[str,
         return (f"{run['steps']} steps, {run['rejected']} rejected, {run['solves']} coupled solves, "
                 f"{num(run['cpu'] / run['solves'] * 1e3)} ms each")
 
-    t1, t101, line = runs["table1"], runs["table1_101"], lines[51]
+    t1, t101, line = runs["table1_alone"], runs["table1_101"], lines[51]
     speed = (f"Speed (CPU time of one process with one BLAS thread, {when}): the Table 1 stop from 1 m/s to "
-             f"rest and on for {OIL:g} s takes **{num(t1['cpu'])} s at 51²** ({cost(t1)}), **{num(t101['cpu'])} s at "
-             f"101²** ({cost(t101)}), {num(line['cpu'])} s as a 51-node line contact ({cost(line)}).")
+             f"rest and on for {OIL:g} s, the run alone (`motion.mesh_error_bar: false`), takes **{num(t1['cpu'])} s "
+             f"at 51²** ({cost(t1)}), **{num(t101['cpu'])} s at 101²** ({cost(t101)}), {num(line['cpu'])} s as a "
+             f"51-node line contact ({cost(line)}); with the mesh error bar of the default, "
+             f"{num(runs['table1']['cpu'])} s at 51².")
     return {"reconnect": reconnect, "reconnect_mesh": reconnect_mesh, "transient_speed": speed}
 
 
