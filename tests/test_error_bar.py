@@ -214,3 +214,26 @@ def test_a_second_run_that_was_interrupted_says_so_and_the_first_is_kept(monkeyp
     assert math.isnan(ds["reconnect_time_mesh_error"].item())
     assert "it was interrupted (interrupted at t = 0.002 s" in ds.attrs["notes"]
     assert "did not converge" not in ds.attrs["notes"]
+
+
+def test_a_contact_that_reconnects_at_once_has_error_bars_of_0_without_a_second_run(monkeypatch, capsys, tmp_path):
+    """A 30 g half-sine shock leaves the shock figure's contact closed (reconnect_time = 0 from
+    the shock's end). Found in the thirty-first session: the default's bar ran a second run and
+    read its 0 as "a mesh error as large as the reconnect time", NaN. Nothing drains, on any
+    mesh or tolerance: both bars are 0, no second run starts, and the words say why."""
+    shock = {"mesh.ny": 1, "operating.speed": 0.0, "operating.force": 0.5, "motion.kind": "steady",
+             "motion.duration": 0.05, "motion.mass": 1.0e-3, "motion.spring_stiffness": 2000.0,
+             "motion.vibration": "half_sine_shock", "motion.shock_duration": 0.011,
+             "motion.vibration_acceleration": -294.2, "motion.error_bar": True}
+
+    def no_second_run(*args, **kwargs):
+        raise AssertionError("a second run for a contact that reconnected at once")
+
+    monkeypatch.setattr(transient_module, "second_reconnect_time", no_second_run)
+    ds = lc.transient(lc.load_scene(TABLE1, shock), progress=False)
+    assert ds["converged"].item() == 1 and ds["reconnect_time"].item() == 0.0
+    assert ds["reconnect_time_error"].item() == 0.0 and ds["reconnect_time_mesh_error"].item() == 0.0
+    assert ds["reconnect_time_extrapolated"].item() == 0.0
+    assert "no second run was made and its error bars are 0" in ds.attrs["notes"]
+    assert main(["transient", TABLE1, *[f"--set={k}={v}" for k, v in shock.items()], "--out", str(tmp_path / "s.nc")]) == 0
+    assert "reconnected at once: nothing drains on any mesh" in capsys.readouterr().out

@@ -29,13 +29,16 @@ def summary(ds) -> str:
     if jumped > 0.0:
         lines.append(f"{'reconnect_time_jumps':>{WIDTH}s} = {jumped:.3g} s (impasse jumps before the reconnection: "
                      "reconnect_time is uncertain by their length)")
+    at_once = ds["reconnect_time"].item() == 0.0  # no second run: the bars are 0 (transient.error_bars)
     if "reconnect_time_error" in ds:
         lines.append(f"{'reconnect_time_error':>{WIDTH}s} = {ds['reconnect_time_error'].item():.3g} s "
-                     f"(time integration, from a run at motion.tolerance / 10)")
+                     + ("(reconnected at once: nothing to integrate)" if at_once else
+                        "(time integration, from a run at motion.tolerance / 10)"))
     if "reconnect_time_mesh_error" in ds:
         error = ds["reconnect_time_mesh_error"].item()
         lines.append(f"{'reconnect_time_mesh_error':>{WIDTH}s} = {error:+.3g} s "
-                     f"(the converged value minus this run's, from a run on a mesh twice as fine along x)")
+                     + ("(reconnected at once: nothing drains on any mesh)" if at_once else
+                        "(the converged value minus this run's, from a run on a mesh twice as fine along x)"))
         if math.isfinite(error):
             lines.append(f"{'reconnect_time_extrapolated':>{WIDTH}s} = {ds['reconnect_time_extrapolated'].item():.6g} s "
                          "(reconnect_time on a converged mesh: reconnect_time + reconnect_time_mesh_error)")

@@ -327,6 +327,59 @@ def band_note(scene, times, rows, reconnected_at: float) -> str:
             f"{exponent:g}, docs/physics.md section 15): run again with the exponent at {other:g} to see how much")
 
 
+# said with a reconnect time of 0, whose error bars are 0 without a second run
+AT_ONCE = ("reconnect_time = 0: the contact was within motion.reconnect_factor x rest_resistance when the motion and "
+           "the excitation ended, so nothing drains, on any mesh or at any tolerance: no second run was made and "
+           "its error bars are 0")
+
+
+def error_bars(scene, history, since, rest: float, recon: float, failure: str, progress: bool) -> tuple[dict, list[str]]:
+    """The error bars of ``recon`` (the run's reconnect_time, s, counted from ``since``; ``rest``
+    its resistance at rest) that ``scene`` asks for (motion.error_bar, motion.mesh_error_bar):
+    their scalars and notes. A second run is made only where the run converged (``failure``
+    empty) and reconnected after some time. One that reconnected at once (``recon`` = 0) has
+    bars of 0: a shock that never opened the contact had read "the mesh error as large as the
+    reconnect time" (thirty-first session). One that did not reconnect has NaN bars."""
+    motion = scene.motion
+    scalars, notes = {}, []
+    if recon == 0.0 and (motion.error_bar or motion.mesh_error_bar):
+        if motion.error_bar:
+            scalars["reconnect_time_error"] = 0.0
+        if motion.mesh_error_bar:
+            scalars |= {"reconnect_time_mesh_error": 0.0, "reconnect_time_extrapolated": 0.0}
+        return scalars, [AT_ONCE]
+    run_again = math.isfinite(recon) and not failure
+
+    def second_run(second_scene, where: str, bar: str, what: str, rest_of_run: float | None):
+        """The reconnect time of ``second_scene`` (``where`` in words) for ``bar`` (its key's
+        words), said on stderr and in the notes as ``what`` it gives."""
+        _to_stderr(f"{bar}: a second run {where}")
+        with one_blas_thread():
+            value, why = second_reconnect_time(second_scene, history, since, progress, rest_of_run)
+        notes.append(f"reconnect_time {what} from a second run {where}: " + second_run_outcome(value, why, what))
+        return value
+
+    if motion.error_bar:
+        tight = None
+        if run_again:
+            tighter, words = tighter_scene(scene)
+            tight = second_run(tighter, f"at {words}", "error bar", "error bar", rest)
+        scalars["reconnect_time_error"] = integration_error(recon, tight)
+    if motion.mesh_error_bar:
+        finer = None
+        if run_again:
+            finer_scene, words = finer_mesh_scene(scene)
+            finer = second_run(finer_scene, f"on {words}", "mesh error bar", "mesh error", None)
+        error = mesh_error(recon, finer)
+        scalars |= {"reconnect_time_mesh_error": error, "reconnect_time_extrapolated": extrapolated(recon, error)}
+        unextrapolated = "" if finer is None else unextrapolated_note(recon, finer, error, words)
+        if unextrapolated:
+            notes.append(unextrapolated)
+    elif math.isfinite(recon) and recon > 0.0:
+        notes.append(MESH_ERROR_UNSEEN)
+    return scalars, notes
+
+
 def _to_stderr(line: str) -> None:
     print(f"lubecontact: transient {line}", file=sys.stderr, flush=True)
 
@@ -385,36 +438,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     if failure and math.isinf(recon):
         recon = math.nan  # the run ended early: "not within duration" is unknown
     scalars["reconnect_time"] = recon
-    tight = finer = None
-    tight_failure = finer_failure = ""
-    # a second run has nothing to bracket where the first did not reconnect, and none starts
-    # after a run that failed or was interrupted
-    if math.isfinite(recon) and not failure:
-        with one_blas_thread():
-            if scene.motion.error_bar:
-                tighter, tighter_words = tighter_scene(scene)
-                _to_stderr(f"error bar: a second run at {tighter_words}")
-                tight, tight_failure = second_reconnect_time(tighter, history, since, progress, rest)
-            if scene.motion.mesh_error_bar:
-                finer_scene, finer_mesh = finer_mesh_scene(scene)
-                _to_stderr(f"mesh error bar: a second run on {finer_mesh}")
-                finer, finer_failure = second_reconnect_time(finer_scene, history, since, progress)
-    if scene.motion.error_bar:
-        scalars["reconnect_time_error"] = integration_error(recon, tight)
-    if tight is not None:
-        notes.append(f"reconnect_time error bar from a second run at {tighter_words}: "
-                     + second_run_outcome(tight, tight_failure, "error bar"))
-    if scene.motion.mesh_error_bar:
-        scalars["reconnect_time_mesh_error"] = mesh_error(recon, finer)
-        scalars["reconnect_time_extrapolated"] = extrapolated(recon, scalars["reconnect_time_mesh_error"])
-    elif math.isfinite(recon) and recon > 0.0:
-        notes.append(MESH_ERROR_UNSEEN)
-    if finer is not None:
-        notes.append(f"reconnect_time mesh error from a second run on {finer_mesh}: "
-                     + second_run_outcome(finer, finer_failure, "mesh error"))
-        unextrapolated = unextrapolated_note(recon, finer, scalars["reconnect_time_mesh_error"], finer_mesh)
-        if unextrapolated:
-            notes.append(unextrapolated)
+    bars, bar_notes = error_bars(scene, history, since, rest, recon, failure, progress)
+    scalars |= bars
+    notes += bar_notes
     # discontinuity events above the open resistance and above reconnect_factor x rest: the
     # reconnected state of reconnect_time is the end of a relative event (docs/DESIGN.md "Time")
     min_duration = scene.interface.min_event_duration
