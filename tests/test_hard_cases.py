@@ -242,7 +242,7 @@ def budget(case):
 
 # A transient case is one run: the mesh error bar a run makes by default (motion.mesh_error_bar)
 # is the same case again on a finer mesh at rest, whose failure leaves the extrapolation NaN and
-# says so (tests/test_error_bar.py); here it would only double each budget
+# says so (tests/test_error_bar.py); here it would multiply each case's cost several times
 ONE_RUN = {"motion.mesh_error_bar": False}
 
 
