@@ -264,10 +264,8 @@ def extrapolated(value: float, error: float) -> float:
 
 def unextrapolated_note(value: float, finer: float, error: float, finer_words: str) -> str:
     """Why reconnect_time_extrapolated is NaN where both runs reconnected (``value`` this run's,
-    ``finer`` the second run's on ``finer_words``, ``error`` the mesh error: ``extrapolated``),
-    "" where it is not."""
-    if not (math.isfinite(value) and math.isfinite(error)) or abs(error) < value:
-        return ""
+    ``finer`` the second run's on ``finer_words``, ``error`` the mesh error), said where
+    ``extrapolated`` refused them."""
     return (f"reconnect_time_extrapolated = nan: the second run on {finer_words} reconnected at "
             f"{finer:.6g} s against this run's "
             f"{value:.6g} s, a mesh error estimate ({error:+.3g} s) as large as the reconnect time itself: the mesh is "
@@ -370,11 +368,10 @@ def error_bars(scene, history, since, rest: float, recon: float, failure: str, p
         if run_again:
             finer_scene, words = finer_mesh_scene(scene)
             finer = second_run(finer_scene, f"on {words}", "mesh error bar", "mesh error", None)
-        error = mesh_error(recon, finer)
+        error = mesh_error(recon, finer)  # finite only where both runs reconnected
         scalars |= {"reconnect_time_mesh_error": error, "reconnect_time_extrapolated": extrapolated(recon, error)}
-        unextrapolated = "" if finer is None else unextrapolated_note(recon, finer, error, words)
-        if unextrapolated:
-            notes.append(unextrapolated)
+        if math.isfinite(error) and math.isnan(scalars["reconnect_time_extrapolated"]):
+            notes.append(unextrapolated_note(recon, finer, error, words))
     elif math.isfinite(recon) and recon > 0.0:
         notes.append(MESH_ERROR_UNSEEN)
     return scalars, notes
