@@ -15,6 +15,7 @@ baseline stop) runs once. Library code: reads only the base scene.
 from __future__ import annotations
 
 import copy
+from collections import Counter
 from collections.abc import Mapping
 from dataclasses import fields
 
@@ -62,6 +63,11 @@ def figure_kind(figure: Mapping) -> str:
     return "ladder" if is_ladder(figure) else "single case"
 
 
+def given_twice(items, key=None) -> list:
+    """The items of ``items`` given more than once, each once, sorted (by ``key``)."""
+    return sorted((item for item, count in Counter(items).items() if count > 1), key=key)
+
+
 def spec_problems(spec: Mapping) -> list[str]:
     """Why the study ``spec`` is not what its figures can draw: unknown keys (a misspelt key
     was silently ignored), a curves figure with no curve (it drew empty axes) or with a label
@@ -84,15 +90,13 @@ def spec_problems(spec: Mapping) -> list[str]:
             labels = [curve.get("label") for curve in curves if isinstance(curve, Mapping)]
             if not curves:
                 problems.append(f"{where}: 'curves' is empty; a figure of curves needs one at least")
-            problems += [f"{where}: curve label {label!r} given twice" for label in sorted(
-                {lb for lb in labels if labels.count(lb) > 1}, key=str)]
+            problems += [f"{where}: curve label {label!r} given twice" for label in given_twice(labels, key=str)]
             problems += [f"{where}: curve {i + 1}: unknown key {key!r}; allowed: {', '.join(sorted(CURVE_KEYS))}"
                          for i, curve in enumerate(curves) if isinstance(curve, Mapping) for key in curve
                          if key not in CURVE_KEYS]
         if kind == "design chart":
             values = list(figure.get("values") or [])
-            problems += [f"{where}: value {v!r} of 'values' given twice" for v in sorted({v for v in values
-                                                                                         if values.count(v) > 1})]
+            problems += [f"{where}: value {v!r} of 'values' given twice" for v in given_twice(values)]
     return problems
 
 
