@@ -15,8 +15,9 @@ for _figure in FIGURES:
         raise lcgrid.GridError(f"figure {_figure} ({config['figure_dir']}/{_figure}.yaml, deep-merged with config "
                                f"figures: {_figure}) does not fit workflow/schemas/figure.schema.yaml: "
                                f"{_err.args[-1] if _err.args else _err}") from None
-if lcgrid.missing_comparisons(SPECS):
-    raise lcgrid.GridError("\n".join(lcgrid.missing_comparisons(SPECS)))
+_missing = lcgrid.missing_comparisons(SPECS)
+if _missing:
+    raise lcgrid.GridError("\n".join(_missing))
 GRIDS = lcgrid.expand_all(SPECS)
 # what each figure's plot: section names, checked now, not in its plot job after every solve
 _plot_problems = [problem for grid in GRIDS.values() for problem in lcplotspec.plot_problems(grid)]
