@@ -129,7 +129,7 @@ def film_estimate(scene) -> float:
     s = scene
     radius, length, force = s.geometry.radius, s.geometry.length, s.operating.force
     mu, speed = s.lubricant.viscosity, s.operating.speed
-    x_min, x_max = domain_x(s)
+    x_min, x_max = domain_x(s, far_inlet=False)
 
     def load(h0: float) -> float:
         x = _clustered_grid(x_min, x_max, [0.0], math.sqrt(2.0 * radius * h0))
@@ -208,7 +208,7 @@ def dry_contact(scene, contact) -> DryContact:
     over the whole domain, then again on nodes concentrated on the contact zone).
     """
     radius, length, force = scene.geometry.radius, scene.geometry.length, scene.operating.force
-    x_min, x_max = domain_x(scene)
+    x_min, x_max = domain_x(scene, far_inlet=False)
     sigma = contact.sigma
 
     def balance(x, load, guess, step):
@@ -246,7 +246,7 @@ def fluid_share_bound(scene, dry: DryContact, sigma: float) -> tuple[float, floa
     s = scene
     radius, length, force = s.geometry.radius, s.geometry.length, s.operating.force
     mu, speed = s.lubricant.viscosity, s.operating.speed
-    x_min, x_max = domain_x(s)
+    x_min, x_max = domain_x(s, far_inlet=False)
     land = DRY_WIDTH_MARGIN * max(math.sqrt(2.0 * radius * max(-dry.separation, 0.0)), hertz_half_width(s))
     x = _clustered_grid(x_min, x_max, [-land, land], math.sqrt(2.0 * radius * sigma))
     film = max(dry.lowest_film(sigma), 0.0) + np.maximum(np.abs(x) - land, 0.0) ** 2 / (2.0 * radius)
@@ -321,7 +321,7 @@ def auto_effects(scene, tolerance: float = DEFAULT_TOLERANCE) -> AutoEffects:
     sigma = contact.sigma
     dry, share_per_mu_u, shear_per_mu_u = _dry_state(full, contact)
     m = dry.load_exponent
-    x_min, x_max = domain_x(full)
+    x_min, x_max = domain_x(full, far_inlet=False)
     domain_area = (x_max - x_min) * full.geometry.length
     budget = _Budget(tolerance)
     on = dict.fromkeys(EFFECTS, True)

@@ -56,13 +56,33 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
         expected_gap=h_t,
         reynolds=reynolds,
         contact_force=float(np.sum(contact_pressure * area)),
-        fluid_force=float(np.sum(fluid_pressure * area)),
+        fluid_force=fluid_load(model, fluid_pressure, film),
         contact_slope=contact_slope,
         flow_coefficient=k,
         faces=faces,
         face_slopes=face_slopes,
         squeeze_content=content,
     )
+
+
+def fluid_load(model: Model, pressure: np.ndarray, film: np.ndarray) -> float:
+    """The fluid's load (N): the trapezoidal sum of p dA over the mesh, plus on a mesh open to
+    the far inlet the load of Martin's film upstream of it (numerics/far_inlet.FarInlet.load)."""
+    load = float(np.sum(pressure * model.mesh.nodal_area))
+    if model.far_inlet is not None:
+        load += model.far_inlet.load(pressure, film)[0]
+    return load
+
+
+def fluid_load_slopes(model: Model, state: State) -> tuple[np.ndarray, np.ndarray | None]:
+    """(dW/dp (ny, nx, m^2), dW/dh at fixed p (ny, nx, N/m) or None) of fluid_load at
+    ``state``: the nodal areas, and on a mesh open to the far inlet its exterior's weight on
+    the first Reynolds node and its film slope."""
+    area = model.mesh.nodal_area
+    if model.far_inlet is None:
+        return area, None
+    _, weights, film_slope = model.far_inlet.load(state.fluid_pressure, state.film)
+    return area + weights, film_slope
 
 
 def beyond_the_radius(model: Model, film: np.ndarray) -> str:
@@ -105,9 +125,13 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
         gradient += state.contact_slope * model.mesh.nodal_area
     if state.reynolds is not None:
         face_slopes, gap_slope, coefficient_slope = fluid_slopes(model, state)
-        squeeze = {} if model.squeeze is None else {"squeeze": (model.squeeze.coefficient, state.squeeze_content)}
+        options = {} if model.squeeze is None else {"squeeze": (model.squeeze.coefficient, state.squeeze_content)}
         if face_slopes is not None:  # rough surfaces: the film on the faces (percolation.py)
             gap_slope, coefficient_slope = None, face_slopes
+        weight, film_slope = fluid_load_slopes(model, state)
+        if film_slope is not None:  # the far inlet's load (fluid_load)
+            options["load_weight"] = weight
+            gradient += film_slope
         gradient += state.reynolds.load_sensitivity(model.mesh, gap_slope, coefficient_slope, model.scene.operating.speed,
-                                                    **squeeze)
+                                                    **options)
     return gradient

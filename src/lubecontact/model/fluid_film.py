@@ -117,11 +117,14 @@ def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
 
 def fluid_faces(model: Model, film: np.ndarray):
     """(values, slopes) percolation.FaceFilm of the film on the faces (rough surfaces), or
-    (None, None) for smooth ones (nodal means, reynolds.py)."""
+    (None, None) for smooth ones (nodal means, reynolds.py); on a mesh open to the far inlet
+    the first x face carries the exterior's flux (numerics/far_inlet.FarInlet.faces)."""
     if model.contact is None:
         return None, None
-
-    return face_film(film, coefficient_law(model), content_law(model))
+    values, slopes = face_film(film, coefficient_law(model), content_law(model))
+    if model.far_inlet is not None:
+        return model.far_inlet.faces(film, values, slopes)
+    return values, slopes
 
 
 def fluid_slopes(model: Model, state: State):

@@ -54,7 +54,7 @@ from scipy.sparse.linalg import LinearOperator, gmres, splu
 
 from lubecontact.model.auto_effects import decreasing_root, operating_point
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
-from lubecontact.model.evaluation import beyond_the_radius, film_scale
+from lubecontact.model.evaluation import beyond_the_radius, film_scale, fluid_load, fluid_load_slopes
 from lubecontact.model.fluid_film import fluid_faces, fluid_film, squeeze_content, yield_stress_law
 from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.complementarity import fischer_burmeister
@@ -160,6 +160,11 @@ class Linearisation:
     # (reynolds_jacobian.LinearOutflow, or a grease's yield_stress_reynolds.YieldStressOutflow)
     slopes: tuple | None = None
     parts: object | None = None
+    # the force row's dF/dp (m^2, the nodal areas, or with the far inlet's weight) and its
+    # dF/dh at fixed pressure (N/m, the far inlet's load; zeros without it):
+    # evaluation.fluid_load_slopes
+    load_weight: np.ndarray | None = None
+    load_film_slope: np.ndarray | None = None
 
     def rebranched(self, slopes: tuple) -> "Linearisation":
         """The same residual with J_pp and J_ph weighted by other Fischer-Burmeister slopes
@@ -289,7 +294,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
     state = State(
         z=it.z, delta=it.delta, film=film, contact_pressure=contact_pressure, fluid_pressure=pressure,
         expected_gap=h_t, reynolds=reynolds, contact_force=float(np.sum(contact_pressure * area)),
-        fluid_force=float(np.sum(pressure * area)), contact_slope=contact_slope if model.contact is not None else None,
+        fluid_force=fluid_load(model, pressure, film), contact_slope=contact_slope if model.contact is not None else None,
         flow_coefficient=k, faces=faces, face_slopes=face_slopes, squeeze_content=content,
     )
     scale_h = film_scale(model)
@@ -298,8 +303,10 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
     if reynolds is not None:
         reynolds.residual = float(np.max(np.abs(exact), initial=0.0)) / pressure_scale
     target, load_slope = (force, 0.0) if model.load is None else model.load.force(it.z)
+    load_weight, load_film_slope = fluid_load_slopes(model, state)
     return Linearisation(state, r_p, r_delta, scale_h * (state.total_force - target) / force, unknown, contact_slope,
-                         pressure_scale, scale_h, smoothing, load_slope, slopes, parts)
+                         pressure_scale, scale_h, smoothing, load_slope, slopes, parts, load_weight,
+                         np.zeros(mesh.shape) if load_film_slope is None else load_film_slope)
 
 
 def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None,
@@ -310,7 +317,7 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
     small meshes, else GMRES, its preconditioner ``kept`` across the steps of a solve while it
     serves (KeptPreconditioner). Raises RuntimeError where a linear solve fails."""
     mesh = model.mesh
-    area = mesh.nodal_area
+    area = lin.load_weight  # dF/dp: the nodal areas (with the far inlet's weight)
     force = model.scene.operating.force
     weight = lin.film_scale / force
     lu = splu(lin.j_pp) if lin.j_pp is not None and lin.j_pp.shape[0] else None
@@ -326,7 +333,8 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
     if lu is not None:
         base[lin.unknown] = lu.solve(-lin.r_p)
     fluid_per_dz = pressure_response(np.ones(mesh.shape))
-    stiffness = float(np.sum((fluid_per_dz + lin.contact_slope) * area))  # dF/dz at fixed delta, N/m (< 0)
+    # dF/dz at fixed delta, N/m (< 0)
+    stiffness = float(np.sum((fluid_per_dz + lin.contact_slope) * area) + np.sum(lin.load_film_slope))
     if model.deformation is None:
         dz = (-lin.r_z - weight * float(np.sum(base * area))) / (weight * (stiffness - lin.load_slope))
         return base + dz * fluid_per_dz, None, dz, stiffness
@@ -368,12 +376,12 @@ def dense_reduced_solve(model: Model, lin: Linearisation, lu, weight: float, rhs
         fluid[lin.unknown.ravel()] = lu.solve(-lin.j_ph.toarray())
         response = response + fluid
     coupled = influence @ response
-    area = mesh.nodal_area.ravel()
+    area, film_slope = lin.load_weight.ravel(), lin.load_film_slope.ravel()
     matrix = np.zeros((n + 1, n + 1))
     matrix[:n, :n] = np.eye(n) - coupled
     matrix[:n, n] = -coupled.sum(axis=1)
-    matrix[n, :n] = weight * (area @ response)
-    matrix[n, n] = weight * (float(area @ response.sum(axis=1)) - lin.load_slope)
+    matrix[n, :n] = weight * (area @ response + film_slope)
+    matrix[n, n] = weight * (float(area @ response.sum(axis=1)) + float(film_slope.sum()) - lin.load_slope)
     y = np.linalg.solve(matrix, rhs)
     if not np.all(np.isfinite(y)):
         raise RuntimeError("the Newton step's dense solve gave non-finite values")
@@ -409,15 +417,15 @@ class NearFieldPreconditioner:
         n, m = mesh.nx * mesh.ny, lin.j_pp.shape[0]
         near = model.deformation.near_field(NEAR_FIELD_RADIUS)
         embed = sp.csr_matrix((np.ones(m), (np.flatnonzero(lin.unknown.ravel()), np.arange(m))), shape=(n, m))
-        slope, area = lin.contact_slope.ravel(), mesh.nodal_area.ravel()
+        slope, area, film_slope = lin.contact_slope.ravel(), lin.load_weight.ravel(), lin.load_film_slope.ravel()
         j_ph = sp.csr_matrix(lin.j_ph)
         block = sp.bmat([[lin.j_pp, j_ph], [-(near @ embed), sp.identity(n) - near @ sp.diags(slope)]], format="csc")
         units = np.concatenate([np.full(m, lin.pressure_scale), np.full(n, lin.film_scale)])
         lu = splu(sp.csc_matrix(sp.diags(1.0 / units) @ block @ sp.diags(units)))
         preconditioner = cls(lu, units, m, np.zeros(m + n), np.zeros(m + n), 1.0)
         column = preconditioner.block_solve(np.concatenate([j_ph @ np.ones(n), -(near @ slope)]))
-        row = weight * np.concatenate([embed.T @ area, area * slope])
-        corner = weight * (float(area @ slope) - lin.load_slope)
+        row = weight * np.concatenate([embed.T @ area, area * slope + film_slope])
+        corner = weight * (float(area @ slope) + float(film_slope.sum()) - lin.load_slope)
         return cls(lu, units, m, column, row, corner - float(row @ column))
 
     def block_solve(self, rhs: np.ndarray) -> np.ndarray:
@@ -448,13 +456,13 @@ def krylov_reduced_solve(model: Model, lin: Linearisation, pressure_response, we
     tolerance (its direction then need not lower the residual)."""
     mesh = model.mesh
     n = mesh.nx * mesh.ny
-    area = mesh.nodal_area
+    area, film_slope = lin.load_weight, lin.load_film_slope
 
     def matvec(y):
         d_delta, dz = y[:n].reshape(mesh.shape), y[n]
         dp = pressure_response(d_delta + dz) + lin.contact_slope * (d_delta + dz)
         return np.append((d_delta - model.deformation(dp)).ravel(),
-                         weight * (float(np.sum(dp * area)) - lin.load_slope * dz))
+                         weight * (float(np.sum(dp * area) + np.sum(film_slope * (d_delta + dz))) - lin.load_slope * dz))
 
     operator = LinearOperator((n + 1, n + 1), matvec=matvec, dtype=float)
 

@@ -16,7 +16,10 @@ sum dA P'(v + dz) = 0,
 
 solved matrix-free by GMRES (each product: a few array operations on the faces, one
 back-substitution with the LU factors of the Reynolds solve and one FFT; 3-4 products per
-step on Table 1). Without fluid pressure it is model/newton.contact_newton_step's equation.
+step on Table 1). dA is the load's weight of each node's pressure: its nodal area, and on a
+line open to the far inlet the first Reynolds node's also carries the exterior's load
+(evaluation.fluid_load_slopes). Without fluid pressure it is model/newton.contact_newton_step's
+equation.
 
 The fluid pressure is a piecewise smooth function of the film (the cavitated set changes
 with it), so near a fold full Newton steps can cycle between sets; once they stall the
@@ -28,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.sparse.linalg import LinearOperator, gmres
 
+from lubecontact.model.evaluation import fluid_load_slopes
 from lubecontact.model.fluid_film import fluid_slopes
 from lubecontact.model.model import Model, State
 from lubecontact.numerics.reynolds import interior_nodes
@@ -94,15 +98,16 @@ def coupled_newton_step(model, state, residual: np.ndarray) -> np.ndarray:
     def response(v):
         return fluid(v) - contact * v
 
+    weight, _ = fluid_load_slopes(model, state)  # dF/dp: the nodal areas (with the far inlet's weight)
     rigid = response(np.ones(mesh.shape))
-    total = float(np.sum(rigid * mesh.nodal_area))
+    total = float(np.sum(rigid * weight))
     if not total < 0.0:
         return residual
 
     def matvec(v):
         v = v.reshape(mesh.shape)
         dp = response(v)
-        shift = -float(np.sum(dp * mesh.nodal_area)) / total
+        shift = -float(np.sum(dp * weight)) / total
         return (v - model.deformation(dp + shift * rigid)).ravel()
 
     operator = LinearOperator((residual.size,) * 2, matvec=matvec, dtype=float)

@@ -34,12 +34,17 @@ def point_outputs(model: Model, state: State) -> tuple[dict, list[str]]:
         notes.append("asperity_contact off: no metallic path")
     shear = 0.0
     if state.reynolds is not None:
-        shear = np.sign(scene.operating.speed) * fluid_shear_force(
-            mesh, state.expected_gap, state.fluid_pressure, state.reynolds.cavitated,
+        pressure, exterior = state.fluid_pressure, 0.0
+        if model.far_inlet is not None:  # Martin's film upstream: its pressure at x_min, its shear beyond
+            pressure = pressure.copy()
+            pressure[:, 0] = model.far_inlet.boundary_pressure(pressure, state.film)
+            exterior = model.far_inlet.shear(pressure, state.film)
+        shear = np.sign(scene.operating.speed) * (exterior + fluid_shear_force(
+            mesh, state.expected_gap, pressure, state.reynolds.cavitated,
             scene.lubricant.viscosity, scene.operating.speed, film=state.film,
             sigma=model.contact.sigma if model.contact is not None else None,
             content=getattr(state.reynolds, "content", None), split=scene.roughness.split,
-        )
+        ))
     force = scene.operating.force
     carried = state.total_force
     outputs = {

@@ -27,7 +27,8 @@ Flags:
   (:func:`lubecontact.physics.inlet.inlet_film_fraction`, h the thinnest fluid gap). The
   inlet is upstream of the sliding: at x_max where U < 0 (the return stroke of an
   oscillation, on an explicit domain; on the automatic one its steps go on the mirrored mesh,
-  whose inlet is there).
+  whose inlet is there). Never on a mesh open to the far inlet (numerics/far_inlet.py):
+  Martin's film from -inf is the fully flooded one.
 """
 
 from __future__ import annotations
@@ -164,7 +165,8 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
                     f"Patir-Cheng's fitted range the pressure flow is the percolation interpolation to zero at "
                     f"h = 0 (docs/physics.md section 15), and those nodes carry "
                     f"{100 * share(state.fluid_pressure * area, thin):.3g} % of the fluid load")
-    if hydrodynamic and scene.operating.speed != 0.0:  # at rest nothing is entrained: no inlet to starve
+    # at rest nothing is entrained: no inlet to starve; Martin's film from -inf is fully flooded
+    if hydrodynamic and scene.operating.speed != 0.0 and not mesh.far_inlet:
         gap = state.expected_gap if state.expected_gap is not None else state.film
         thinnest = float(np.min(gap))
         end, key, node = (("x_max", "mesh.x_max: the sliding reverses", -1) if scene.operating.speed < 0.0

@@ -72,19 +72,21 @@ class JFOSolution:
     face_content: np.ndarray | None = None  # (ny, nx-1) theta upwind of each x face
     unknown: np.ndarray | None = None  # (ny, nx) bool, the nodes of the system
 
-    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed) -> np.ndarray:
+    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed, load_weight=None) -> np.ndarray:
         """dW/dh_j, N/m (ny, nx), of the fluid load W = sum p dA at this solution's active set.
 
         Adjoint of the JFO system M x = r (x = p on pressurised nodes, theta on cavitated
         ones): M^T lambda = dW/dx (nodal areas on pressurised nodes, 0 on cavitated ones),
         dW/dh_j = -lambda^T dr/dh_j, with the face terms of reynolds.adjoint_sensitivity and
-        the Couette faces weighted by their upwind content.
+        the Couette faces weighted by their upwind content. ``load_weight``: dW/dp in place
+        of the nodal areas (reynolds.load_sensitivity).
         """
         if self.factor is None:
             return np.zeros(mesh.shape)
         pressurised = ~self.cavitated[self.unknown]
         adjoint = np.zeros(mesh.shape)
-        adjoint[self.unknown] = self.factor.solve(mesh.nodal_area[self.unknown] * pressurised, trans="T")
+        weight = mesh.nodal_area if load_weight is None else load_weight
+        adjoint[self.unknown] = self.factor.solve(weight[self.unknown] * pressurised, trans="T")
         return adjoint_sensitivity(mesh, adjoint, self.pressure, gap_slope, coefficient_slope, speed,
                                    self.face_content)
 

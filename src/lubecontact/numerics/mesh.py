@@ -26,6 +26,12 @@ the mesh has ``nodes_x(scene)`` >= nx nodes along x. Each speed thus has its own
 (cases of a sweep differ in their inlet, not in their spacing); the inlet stops at
 MAX_DOMAIN_RADII x R (Eq. 4 needs |x| < R), where the validity flag ``inlet`` reports a
 film still short of its flooded value.
+
+Where the scene asks for it (mesh.far_inlet) and the far inlet's film is known in closed
+form (numerics/far_inlet.py, far_inlet_problems: a steady Newtonian line contact between
+rough surfaces, the automatic domain) the mesh needs none of those cells: ``build_mesh(scene)`` ends at -3.5 s and marks the mesh ``far_inlet``, and
+the solvers take the exterior from -inf as its boundary condition. A motion's mesh
+(``far_inlet=False``, unsteady/integrator.py) keeps them: its squeeze reaches upstream.
 """
 
 from __future__ import annotations
@@ -78,32 +84,64 @@ def film_inlet_length(scene) -> float:
     return INLET_FILM_LENGTHS * float(np.sqrt(2.0 * scene.geometry.radius * martin_film(scene)))
 
 
-def _inlet_cells(scene) -> tuple[float, float, int]:
-    """(x_min, x_max, cells added upstream) of the domain before the cells are added."""
+def far_inlet_problems(scene) -> list[str]:
+    """Why the scene's mesh.far_inlet cannot serve (empty when it can, or is not asked for):
+    Martin's film in closed form (numerics/far_inlet.py) needs a line contact (on a cylinder
+    of finite length the fluid upstream leaks sideways too), the automatic domain, a
+    Newtonian lubricant (a grease's flux is not linear in its pressure gradient), rough
+    surfaces (their films on the faces) and a steady solve (a motion's squeeze reaches
+    upstream)."""
+    if not scene.mesh.far_inlet:
+        return []
+    needs = {"a line contact (mesh.ny: 1)": scene.mesh.ny == 1,
+             "the automatic domain (mesh.x_min and mesh.x_max left out)": scene.mesh.x_min is None,
+             "a Newtonian lubricant (lubricant.rheology: newtonian)": scene.lubricant.rheology == "newtonian",
+             "asperity contact (effects.asperity_contact: true)": bool(scene.effects.asperity_contact),
+             "a steady solve (motion.kind: steady, no vibration)": (scene.motion.kind == "steady"
+                                                                   and scene.motion.vibration == "none")}
+    missing = [need for need, met in needs.items() if not met]
+    if not missing:
+        return []
+    return ["mesh.far_inlet: true needs " + ", ".join(missing) + " (docs/physics.md section 17, \"The far inlet\")"]
+
+
+def far_inlet_serves(scene) -> bool:
+    """Whether the scene asks for the far inlet (mesh.far_inlet) and it serves: no
+    far_inlet_problems, and a fluid sliding at U > 0."""
+    effects = scene.effects
+    return (scene.mesh.far_inlet and not far_inlet_problems(scene) and effects.hydrodynamics
+            and scene.operating.speed > 0.0)
+
+
+def _inlet_cells(scene, far_inlet: bool) -> tuple[float, float, int]:
+    """(x_min, x_max, cells added upstream) of the domain before the cells are added; none
+    where ``far_inlet`` and far_inlet_serves."""
     s = auto_length_scale(scene)
     x_min = -UPSTREAM_LENGTHS * s if scene.mesh.x_min is None else float(scene.mesh.x_min)
     x_max = DOWNSTREAM_LENGTHS * s if scene.mesh.x_max is None else float(scene.mesh.x_max)
-    if scene.mesh.x_min is not None or not x_max > x_min:
+    if scene.mesh.x_min is not None or not x_max > x_min or (far_inlet and far_inlet_serves(scene)):
         return x_min, x_max, 0
     spacing = (x_max - x_min) / (scene.mesh.nx - 1)
     inlet = min(film_inlet_length(scene), MAX_DOMAIN_RADII * scene.geometry.radius)
     return x_min, x_max, max(0, int(np.ceil((inlet + x_min) / spacing - 1e-9)))
 
 
-def nodes_x(scene) -> int:
-    """Nodes along x: mesh.nx plus the cells the automatic inlet adds for the film."""
-    return scene.mesh.nx + _inlet_cells(scene)[2]
+def nodes_x(scene, far_inlet: bool = True) -> int:
+    """Nodes along x: mesh.nx plus the cells the automatic inlet adds for the film (none
+    where the far inlet serves, unless ``far_inlet`` is False)."""
+    return scene.mesh.nx + _inlet_cells(scene, far_inlet)[2]
 
 
-def domain_x(scene) -> tuple[float, float]:
-    """(x_min, x_max) in m: the scene's values, or the automatic domain where they are None."""
-    x_min, x_max, cells = _inlet_cells(scene)
+def domain_x(scene, far_inlet: bool = True) -> tuple[float, float]:
+    """(x_min, x_max) in m: the scene's values, or the automatic domain where they are None
+    (without the inlet cells where the far inlet serves, unless ``far_inlet`` is False)."""
+    x_min, x_max, cells = _inlet_cells(scene, far_inlet)
     return x_min - cells * (x_max - x_min) / (scene.mesh.nx - 1), x_max
 
 
 def mesh_problems(scene) -> list[str]:
     """Reasons the scene's mesh cannot resolve the problem (empty when fine)."""
-    problems = []
+    problems = far_inlet_problems(scene)
     x_min, x_max = domain_x(scene)
     if not x_max > x_min:
         problems.append(f"mesh.x_max ({x_max:g} m) must be greater than mesh.x_min ({x_min:g} m)")
@@ -116,7 +154,7 @@ def mesh_problems(scene) -> list[str]:
     dx = (x_max - x_min) / (nodes_x(scene) - 1)
     width = contact_width_estimate(scene)
     if dx * MIN_INTERVALS_ACROSS_CONTACT > width:
-        base_min = _inlet_cells(scene)[0]  # mesh.nx spans the domain before the film's inlet cells
+        base_min = _inlet_cells(scene, True)[0]  # mesh.nx spans the domain before the film's inlet cells
         needed = int(np.ceil(MIN_INTERVALS_ACROSS_CONTACT * (x_max - base_min) / width)) + 1
         problems.append(
             f"mesh.nx = {scene.mesh.nx} is too coarse: node spacing {dx:.3g} m against an expected "
@@ -132,6 +170,7 @@ class Mesh:
     x: np.ndarray  # (nx,) m
     y: np.ndarray  # (ny,) m; [0.0] in line mode
     length: float  # cylinder length L, m
+    far_inlet: bool = False  # x_min is open to Martin's film from -inf (numerics/far_inlet.py)
 
     @property
     def nx(self) -> int:
@@ -192,9 +231,11 @@ def mirrored_mesh(mesh: Mesh) -> Mesh:
     return Mesh(x=-mesh.x[::-1], y=mesh.y, length=mesh.length)
 
 
-def build_mesh(scene) -> Mesh:
-    x_min, x_max = domain_x(scene)
-    x = np.linspace(x_min, x_max, nodes_x(scene))
+def build_mesh(scene, far_inlet: bool = True) -> Mesh:
+    """The scene's mesh; open to the far inlet where it serves and ``far_inlet`` (a motion's
+    mesh is not: module docstring)."""
+    x_min, x_max = domain_x(scene, far_inlet)
+    x = np.linspace(x_min, x_max, nodes_x(scene, far_inlet))
     half = 0.5 * scene.geometry.length
     y = np.zeros(1) if scene.mesh.ny == 1 else np.linspace(-half, half, scene.mesh.ny)
-    return Mesh(x=x, y=y, length=scene.geometry.length)
+    return Mesh(x=x, y=y, length=scene.geometry.length, far_inlet=far_inlet and far_inlet_serves(scene))

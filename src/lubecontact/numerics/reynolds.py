@@ -80,9 +80,9 @@ class ReynoldsSolution:
     # no node is pressurised
     factor: object | None = None
 
-    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed, squeeze=None) -> np.ndarray:
+    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed, squeeze=None, load_weight=None) -> np.ndarray:
         """dW/dh_j (N/m) at this solution: module function load_sensitivity."""
-        return load_sensitivity(mesh, self, gap_slope, coefficient_slope, speed, squeeze)
+        return load_sensitivity(mesh, self, gap_slope, coefficient_slope, speed, squeeze, load_weight)
 
 
 @dataclass(frozen=True)
@@ -346,7 +346,7 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) 
     return float(total)
 
 
-def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeeze=None) -> np.ndarray:
+def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeeze=None, load_weight=None) -> np.ndarray:
     """dW/dh_j, N/m (ny, nx): how the fluid load W = sum_i p_i dA_i changes with the film at
     node j, at the solution's active set, by the adjoint method (one more solve with A_FF:
     a back-substitution with the LU factors the solve left, or a few CG steps when it
@@ -363,12 +363,14 @@ def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeez
     ``squeeze`` (c0 in 1/s, control_volume.ControlVolumeMean of the cells' content): a
     transient step's squeeze term dA_i dh_T,i/dt with dh_T,i/dt = c0 c_i + history
     (reynolds_system's squeeze_rate) adds c0 (dc/dh)^T (lambda dA) to lambda^T dr/dh.
+    ``load_weight`` (ny, nx, m^2): dW/dp_i where the load is not the nodal areas' sum (a mesh
+    open to the far inlet, numerics/far_inlet.FarInlet.load); None: the nodal areas.
     """
     if solution.factor is None:
         return np.zeros(mesh.shape)
     free = interior_nodes(mesh.shape, mesh.line) & ~solution.cavitated
     adjoint = np.zeros(mesh.shape)
-    adjoint[free] = solution.factor.solve(mesh.nodal_area[free])
+    adjoint[free] = solution.factor.solve((mesh.nodal_area if load_weight is None else load_weight)[free])
     sensitivity = adjoint_sensitivity(mesh, adjoint, solution.pressure, gap_slope, coefficient_slope, speed)
     if squeeze is not None:
         coefficient, content = squeeze

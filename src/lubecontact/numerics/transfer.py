@@ -22,7 +22,7 @@ def coarser_mesh(mesh, coarsest: int):
 
     if mesh.nx <= coarsest and (mesh.line or mesh.ny <= coarsest):
         return None
-    return Mesh(x=halve(mesh.x), y=mesh.y if mesh.line else halve(mesh.y), length=mesh.length)
+    return Mesh(x=halve(mesh.x), y=mesh.y if mesh.line else halve(mesh.y), length=mesh.length, far_inlet=mesh.far_inlet)
 
 
 def interpolate_field(field, source, target):

@@ -535,6 +535,18 @@ class MeshSettings(_Section):
     ny: int = _field(51, _Integer(3, also=(1,)), "nodes along y (cylinder axis); 1 = line contact")
     x_min: float | None = _field(None, _AutoOr(_Real("m")), "inlet end of the domain (auto: mesh.domain_x)")
     x_max: float | None = _field(None, _AutoOr(_Real("m")), "outlet end of the domain (auto: mesh.domain_x)")
+    far_inlet: bool = _field(
+        False, _Flag(),
+        "steady line contact on the automatic domain: Martin's film upstream of it as its boundary condition, "
+        "in place of the inlet columns (docs/physics.md section 17, \"The far inlet\"); a motion keeps them",
+    )
+
+    def to_dict(self):
+        """The default (no far inlet) is left out, so scenes written before the key keep their hash."""
+        data = super().to_dict()
+        if not self.far_inlet:
+            del data["far_inlet"]
+        return data
 
 
 @dataclass(frozen=True)

@@ -89,8 +89,8 @@ def study_points(spec: Mapping) -> list[dict]:
         if domain:
             n = int(domain["mesh"])
             reference = base.replace({"mesh.nx": n, "mesh.ny": n, "operating.speed": speed})
-            x_min, x_max = domain_x(reference)  # the automatic inlet of this speed (it follows the film)
-            dx = (x_max - x_min) / (nodes_x(reference) - 1)
+            x_min, x_max = domain_x(reference, far_inlet=False)  # the automatic inlet of this speed (it follows the film)
+            dx = (x_max - x_min) / (nodes_x(reference, far_inlet=False) - 1)
             for scale in domain["scales"]:
                 # whole cells added (removed) at each end: the nodes stay where the reference
                 # mesh has them, so only the domain's truncation changes, not the grid's offset
@@ -98,7 +98,8 @@ def study_points(spec: Mapping) -> list[dict]:
                 left = min(round(-x_min * (float(scale) - 1.0) / dx), math.floor((reach + x_min) / dx))
                 right = min(round(x_max * (float(scale) - 1.0) / dx), math.floor((reach - x_max) / dx))
                 points.append({"part": "domain", "speed": speed, "key": float(scale), "overrides": {
-                    "mesh.nx": nodes_x(reference) + left + right, "mesh.ny": n, "mesh.x_min": x_min - left * dx, "mesh.x_max": x_max + right * dx}})
+                    "mesh.nx": nodes_x(reference, far_inlet=False) + left + right, "mesh.ny": n, "mesh.x_min": x_min - left * dx,
+                    "mesh.x_max": x_max + right * dx, "mesh.far_inlet": False}})
         tolerance = spec.get("tolerance")
         if tolerance:
             n = int(tolerance["mesh"])

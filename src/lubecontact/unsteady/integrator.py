@@ -495,8 +495,9 @@ class TimeIntegrator:
         self.scene, self.history = scene, history
         self.tolerance = scene.motion.tolerance
         # one mesh while the contact moves, its automatic inlet sized for the fastest instant
-        # (mesh.py); at rest the mesh at rest (rest_domain)
-        mesh = build_mesh(scene_at(scene, history.peak_speed()))
+        # (mesh.py: not the far inlet's, whose closed form is steady); at rest the mesh at
+        # rest (rest_domain)
+        mesh = build_mesh(scene_at(scene, history.peak_speed()), far_inlet=False)
         steady = Model.assemble(scene_at(scene, history.initial_speed()), mesh=mesh, contact=contact)
         self.contact = steady.contact
         self.floor = steady.contact.sigma if steady.contact is not None else FILM_FLOOR
