@@ -12,8 +12,10 @@ Two measurements, one process:
    upstream of -X. An exterior that carries its own load too is exact by construction.
 2. The cost of the inlet cells in the model: the Table 1 point at 10 m/s on 51² and 201²,
    on the automatic domain (the inlet of 20 film lengths, physics section 17) against the
-   same spacing on the domain before those cells ([-3.5 s, 1.5 s]; p = 0 at its end), in
-   factorisation units (bench/solver_core.py) and with the central film of each.
+   same spacing on the domain before those cells ([-3.5 s, 1.5 s]; p = 0 at its end), and
+   as a 51- and a 201-node line open to the far inlet (mesh.far_inlet, numerics/far_inlet.py)
+   against the automatic long inlet at the same spacing, in factorisation units
+   (bench/solver_core.py) and with the central film of each.
 
     PYTHONPATH=src .venv/bin/python bench/inlet_exterior.py     # ~1 minute
 """
@@ -84,20 +86,30 @@ def cpu_median(scene) -> tuple[float, object]:
     return statistics.median(t for t, _ in runs), runs[-1][1]
 
 
+def compared(n: int, line: bool) -> tuple[tuple[str, object], tuple[str, object]]:
+    """((name, scene), (name, scene)) to compare: on 2-D the automatic domain and the same
+    without the inlet cells, on a line the far inlet and the automatic long inlet."""
+    automatic = lc.load_scene(SCENE, {"mesh.nx": n, "mesh.ny": 1 if line else n, "operating.speed": SPEED})
+    if line:
+        return (("mesh.far_inlet: true", automatic.replace({"mesh.far_inlet": True})),
+                ("automatic: the long inlet, p = 0 at its end", automatic))
+    s = auto_length_scale(automatic)
+    short = automatic.replace({"mesh.x_min": -3.5 * s, "mesh.x_max": 1.5 * s})
+    return ("automatic: the long inlet", automatic), ("without the inlet cells, p = 0 at its end", short)
+
+
 def cost_rows(unit: float) -> list[str]:
     rows = ["| mesh | domain | nodes solved | CPU | units | central film | film change |", "|---|---|---|---|---|---|---|"]
-    for n in MESHES:
-        automatic = lc.load_scene(SCENE, {"mesh.nx": n, "mesh.ny": n, "operating.speed": SPEED})
-        s = auto_length_scale(automatic)
-        short = automatic.replace({"mesh.x_min": -3.5 * s, "mesh.x_max": 1.5 * s})
-        films = []
-        for name, scene in (("automatic inlet", automatic), ("without the inlet cells", short)):
-            cpu, ds = cpu_median(scene)
-            films.append(float(ds.central_film_thickness))
-            change = "" if len(films) == 1 else f"{films[1] / films[0] - 1:+.1%}"
-            ny, nx = build_mesh(scene).shape
-            rows.append(f"| {n}² | {name} | {ny} x {nx} | {cpu:.3f} s | {cpu / unit:.2f} | "
-                        f"{films[-1] * 1e6:.3f} um | {change} |")
+    for line in (False, True):
+        for n in MESHES:
+            films = []
+            for name, scene in compared(n, line):
+                cpu, ds = cpu_median(scene)
+                films.append(float(ds.central_film_thickness))
+                change = "" if len(films) == 1 else f"{films[1] / films[0] - 1:+.1%}"
+                ny, nx = build_mesh(scene).shape
+                rows.append(f"| {f'{n}-node line' if line else f'{n}²'} | {name} | {ny} x {nx} | {cpu:.3f} s | "
+                            f"{cpu / unit:.2f} | {films[-1] * 1e6:.3f} um | {change} |")
     return rows
 
 
