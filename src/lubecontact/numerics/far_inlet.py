@@ -13,6 +13,7 @@ gives the load and the shear the fluid carries upstream of x_1:
     flux    q = U I_2 / (2 I_3) - p_1 / (12 mu I_3)                       (a Robin condition)
     load    W = p_1 K_3 / I_3 + 6 mu U (K_2 - K_3 I_2 / I_3)
     h*        = I_2 / I_3 - p_1 / (6 mu U I_3)
+    shear     mu U (4 J_1 - 3 h* J_2) on the block upstream of x_0 (J_n: I_n up to x_0)
 
 per unit width. The flux is the first x face's (reynolds.py) with the Poiseuille coefficient
 dx / (12 mu I_3) and the Couette gap I_2 / I_3: one more conductance to the pressure zero at
@@ -22,7 +23,8 @@ pass half to each of the face's nodes as every face's do (reynolds_jacobian.py);
 dh/dc = 1 everywhere, dI_n/dc = -n I_{n+1} and dK_n/dc = -n K_{n+1}.
 
 The mesh then needs no inlet cells (numerics/mesh.py): the automatic domain [-3.5 s, 1.5 s]
-is as flooded as an infinite inlet. Where it holds (mesh.far_inlet_serves): a line contact
+is as flooded as an infinite inlet. A scene asks for it (mesh.far_inlet), and is refused
+where it does not hold (numerics/mesh.far_inlet_problems): a line contact
 (on a cylinder of finite length the fluid upstream also leaks sideways: a per-row exterior
 made the Table 1 film at 10 m/s on 51 x 51 4 % thicker than the long inlet, whose result
 does not move when the inlet is lengthened further), a Newtonian film (a grease's flux is
