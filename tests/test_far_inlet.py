@@ -9,6 +9,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import lubecontact as lc
+from lubecontact.model.validity import far_inlet_advice
 from lubecontact.numerics.far_inlet import FarInlet, parabola_integrals
 from lubecontact.numerics.mesh import Mesh, build_mesh, domain_x, nodes_x
 from lubecontact.physics.percolation import face_film
@@ -169,3 +170,18 @@ def test_a_motions_mesh_keeps_the_long_inlet_and_the_key_is_a_switch():
     off = lc.load_scene(TABLE1, {"mesh.ny": 1})
     assert lc.load_scene(TABLE1, {"mesh.ny": 1, "mesh.far_inlet": False}).hash == off.hash  # old scenes keep theirs
     assert line.replace({"mesh.far_inlet": False}).hash != line.hash
+
+
+def test_a_starved_steady_line_is_told_of_the_far_inlet_which_floods_it():
+    """A 10 Pa s oil at 1 m/s on a line: its long inlet stops at 0.9 R, where a rigid film is
+    3 % short of the flooded one (the flag ``inlet``), and the flag says the far inlet would
+    flood it; with it the flag is gone and the film is thicker."""
+    viscous = {"mesh.ny": 1, "lubricant.viscosity": 10.0, "operating.speed": 1.0}
+    starved = lc.solve(lc.load_scene(TABLE1, viscous))
+    assert "inlet" in starved.attrs["validity"] and "mesh.far_inlet: true" in starved.attrs["notes"]
+    flooded = lc.solve(lc.load_scene(TABLE1, {**viscous, "mesh.far_inlet": True}))
+    assert flooded["converged"].item() == 1 and "inlet" not in flooded.attrs["validity"]
+    assert flooded["min_film_thickness"].item() > starved["min_film_thickness"].item()
+    for where_it_would_not_hold in ({"mesh.ny": 21}, {"mesh.x_min": -5e-3, "mesh.x_max": 5e-4},
+                                    {"motion.kind": "stop"}):
+        assert far_inlet_advice(lc.load_scene(TABLE1, {**viscous, **where_it_would_not_hold})) == ""

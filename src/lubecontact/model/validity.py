@@ -34,10 +34,12 @@ Flags:
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
 from lubecontact.io.case_schema import VALIDITY_FLAGS
+from lubecontact.numerics.mesh import far_inlet_problems
 from lubecontact.physics.inlet import inlet_film_fraction
 from lubecontact.physics.viscosity_temperature import DATASHEET_TEMPERATURES
 from lubecontact.scene.unread_keys import unread_motion_keys_note
@@ -175,5 +177,15 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
         fraction = inlet_film_fraction(inlet)
         if 1.0 - fraction >= INLET_FILM_DEFICIT:
             flags["inlet"] = (f"inlet at X = {end}/sqrt(2 R h) = {inlet:.3g} (h = {thinnest:.3g} m): a rigid film "
-                              f"would be {fraction:.3g} of the fully flooded one; lengthen the domain ({key})")
+                              f"would be {fraction:.3g} of the fully flooded one; lengthen the domain ({key})"
+                              + far_inlet_advice(scene))
     return flags
+
+
+def far_inlet_advice(scene) -> str:
+    """What the flag ``inlet`` adds where the scene could take the far inlet instead (a steady
+    line contact on the automatic domain: numerics/mesh.far_inlet_problems), else ""."""
+    if scene.mesh.far_inlet or far_inlet_problems(replace(scene, mesh=replace(scene.mesh, far_inlet=True))):
+        return ""
+    return ", or set mesh.far_inlet: true (Martin's film upstream as the boundary condition, docs/physics.md section 17)"
+
