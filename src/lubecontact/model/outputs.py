@@ -37,8 +37,7 @@ def point_outputs(model: Model, state: State) -> tuple[dict, list[str]]:
         pressure, exterior = state.fluid_pressure, 0.0
         if model.far_inlet is not None:  # Martin's film upstream: its pressure at x_min, its shear beyond
             pressure = pressure.copy()
-            pressure[:, 0] = model.far_inlet.boundary_pressure(pressure, state.film)
-            exterior = model.far_inlet.shear(pressure, state.film)
+            pressure[:, 0], exterior = model.far_inlet.upstream(pressure, state.film)
         shear = np.sign(scene.operating.speed) * (exterior + fluid_shear_force(
             mesh, state.expected_gap, pressure, state.reynolds.cavitated,
             scene.lubricant.viscosity, scene.operating.speed, film=state.film,

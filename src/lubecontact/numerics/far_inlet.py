@@ -151,20 +151,17 @@ class FarInlet:
         film_slope[:, 0] = film_slope[:, 1] = slope
         return float(np.sum(value)), weights, film_slope
 
-    def boundary_pressure(self, pressure: np.ndarray, film: np.ndarray) -> np.ndarray:
-        """p (ny,) Pa of the exterior film at the mesh's first node x_0, for its first node
-        p_1: 6 mu U (J_2 - h* J_3) with J_n the integrals up to x_0 (0 on the sides)."""
+    def upstream(self, pressure: np.ndarray, film: np.ndarray) -> tuple[np.ndarray, float]:
+        """(p at x_0 (ny,) Pa, shear upstream of x_0 N) of the exterior film for the mesh's first
+        Reynolds node's pressure p_1, with J_n the integrals up to x_0: the pressure
+        6 mu U (J_2 - h* J_3) (0 on the sides), for the pressure gradient at the first nodes,
+        and int tau dA of the block's shear mu U / h + (h/2) dp/dx of the full film (friction.py,
+        flow factors 1), mu U (4 J_1 - 3 h* J_2) per unit width."""
         inner, outer = self.integrals(film), self.integrals(film, self.start)
         h_star = self._film_at_peak(pressure, inner)
-        return np.where(self.widths > 0.0, 6.0 * self.viscosity * self.speed * (outer.i[2] - h_star * outer.i[3]), 0.0)
-
-    def shear(self, pressure: np.ndarray, film: np.ndarray) -> float:
-        """int tau dA upstream of the mesh's first node (N): the block's shear mu U / h +
-        (h/2) dp/dx of the full film (friction.py, flow factors 1), mu U (4 J_1 - 3 h* J_2)
-        per unit width with J_n the integrals up to x_0."""
-        inner, outer = self.integrals(film), self.integrals(film, self.start)
-        h_star = self._film_at_peak(pressure, inner)
-        return float(np.sum(self.widths * self.viscosity * self.speed * (4.0 * outer.i[1] - 3.0 * h_star * outer.i[2])))
+        couette = self.viscosity * self.speed
+        boundary = np.where(self.widths > 0.0, 6.0 * couette * (outer.i[2] - h_star * outer.i[3]), 0.0)
+        return boundary, float(np.sum(self.widths * couette * (4.0 * outer.i[1] - 3.0 * h_star * outer.i[2])))
 
     def _film_at_peak(self, pressure: np.ndarray, inner: ParabolaIntegrals) -> np.ndarray:
         """h* (per row, m) of the exterior's flux U h*/2, from its pressure at x_1."""
