@@ -74,7 +74,7 @@ def test_martins_exterior_film_gives_the_flux_load_shear_and_boundary_pressure()
     field = np.zeros(mesh.shape)
     field[0, 1] = p1
 
-    values, _ = inlet.faces(film, *lc_faces(mesh, film))
+    values, _ = inlet.faces(film, *smooth_faces(mesh, film))
     flux = 0.5 * SPEED * values.gap_x[0, 0] - values.coefficient_x[0, 0] / dx * p1  # the face's, per width
     assert flux == pytest.approx(0.5 * SPEED * h_star, rel=1e-9)
 
@@ -89,7 +89,7 @@ def test_martins_exterior_film_gives_the_flux_load_shear_and_boundary_pressure()
     assert shear == pytest.approx(width * quad(tau, -np.inf, x0, epsrel=1e-12, limit=400)[0], rel=1e-8)
 
 
-def lc_faces(mesh, film):
+def smooth_faces(mesh, film):
     """The faces of a smooth Newtonian film (k = h^3/(12 mu), content h), as percolation.py
     lays them out, for the far inlet to overwrite."""
     return face_film(film, lambda h: (h**3 / (12 * VISCOSITY), h**2 / (4 * VISCOSITY)), lambda h: (h, np.ones_like(h)))
@@ -103,12 +103,12 @@ def test_the_slopes_are_the_derivatives_in_the_first_faces_film():
     step = 1e-12  # m, on a film of 60 um at the face
 
     def faces(f):
-        return inlet.faces(f, *lc_faces(mesh, f))[0]
+        return inlet.faces(f, *smooth_faces(mesh, f))[0]
 
     up, down = film.copy(), film.copy()
     up[0, :2] += step
     down[0, :2] -= step  # the face's film h_f moves by the step
-    _, slopes = inlet.faces(film, *lc_faces(mesh, film))
+    _, slopes = inlet.faces(film, *smooth_faces(mesh, film))
     for name in ("coefficient_x", "gap_x"):
         numeric = (getattr(faces(up), name)[0, 0] - getattr(faces(down), name)[0, 0]) / (2 * step)
         assert getattr(slopes, name)[0, 0] == pytest.approx(numeric, rel=1e-5)

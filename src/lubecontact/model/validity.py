@@ -188,4 +188,3 @@ def far_inlet_advice(scene) -> str:
     if scene.mesh.far_inlet or far_inlet_problems(replace(scene, mesh=replace(scene.mesh, far_inlet=True))):
         return ""
     return ", or set mesh.far_inlet: true (Martin's film upstream as the boundary condition, docs/physics.md section 17)"
-

@@ -29,8 +29,9 @@ film still short of its flooded value.
 
 Where the scene asks for it (mesh.far_inlet) and the far inlet's film is known in closed
 form (numerics/far_inlet.py, far_inlet_problems: a steady Newtonian line contact between
-rough surfaces, the automatic domain) the mesh needs none of those cells: ``build_mesh(scene)`` ends at -3.5 s and marks the mesh ``far_inlet``, and
-the solvers take the exterior from -inf as its boundary condition. A motion's mesh
+rough surfaces, the automatic domain) the mesh needs none of those cells:
+``build_mesh(scene)`` ends at -3.5 s and marks the mesh ``far_inlet``, and the solvers take
+the exterior from -inf as its boundary condition. A motion's mesh
 (``far_inlet=False``, unsteady/integrator.py) keeps them: its squeeze reaches upstream.
 """
 
