@@ -425,3 +425,36 @@ def test_a_vanishing_force_ends_not_converged_not_in_an_internal_error(tmp_path,
                        "--out", str(tmp_path / "f.nc"))
     assert code == cli.EXIT_NOT_CONVERGED and "internal error" not in err, err
     assert xr.load_dataset(tmp_path / "f.nc")["converged"].item() == 0
+
+
+# A sweep of extreme finite values over every positive input (session 56): each of these ended
+# in an internal error (a division by zero, an overflow, a rough-contact table not monotone, a
+# mesh of 394 PiB). They are refused now, naming the key and the physical range.
+EXTREME = {"cylinder.youngs_modulus": 5e-324, "block.youngs_modulus": 1e-300, "cylinder.yield_strength": 1e-300,
+           "roughness.sigma": 1e-300, "roughness.asperity_density": 1e308, "geometry.radius": 1e30,
+           "geometry.length": 5e-324, "lubricant.viscosity": 5e-324}
+
+
+@pytest.mark.parametrize("key, value", EXTREME.items(), ids=EXTREME.keys())
+def test_extreme_finite_inputs_are_refused_naming_the_physical_range(capsys, no_solve, key, value):
+    err = refused(capsys, "show", SCENE, "--set", f"{key}={value!r}", needle=f"{key} = {value!r}: out of range")
+    assert "from " in err or "at least " in err, err
+
+
+# The ends of each physical range (a modulus or strength has none above: 1e300 Pa stands for a
+# rigid body): a solve there returns its dataset (converged or saying why
+# not) or refuses the scene as a whole; nothing else (measured: 15 x 11 nodes, 2 s in all).
+RANGE_ENDS = [("geometry.radius", 1e3), ("geometry.length", 1e-10), ("geometry.length", 1e3),
+              ("cylinder.youngs_modulus", 1e3), ("cylinder.youngs_modulus", 1e300), ("cylinder.yield_strength", 1e3),
+              ("cylinder.yield_strength", 1e300), ("roughness.sigma", 1e-10), ("roughness.asperity_density", 1.0),
+              ("roughness.asperity_density", 1e20), ("roughness.asperity_radius", 1e-10),
+              ("roughness.asperity_radius", 1e3), ("lubricant.viscosity", 1e-6)]
+
+
+@pytest.mark.parametrize("key, value", RANGE_ENDS, ids=[f"{k}={v:g}" for k, v in RANGE_ENDS])
+def test_the_ends_of_each_physical_range_solve_or_are_refused_as_a_scene(tmp_path, capsys, key, value):
+    code, _, err = run(capsys, "solve", SCENE, "--set", "mesh.nx=15", "--set", "mesh.ny=11", "--set", f"{key}={value!r}",
+                       "--out", str(tmp_path / "e.nc"))
+    assert code in (cli.EXIT_OK, cli.EXIT_NOT_CONVERGED, cli.EXIT_BAD_INPUT) and "internal error" not in err, err
+    if code != cli.EXIT_BAD_INPUT:
+        assert xr.load_dataset(tmp_path / "e.nc")["converged"].item() == int(code == 0)

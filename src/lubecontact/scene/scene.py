@@ -118,6 +118,7 @@ class _Real:
     low_open: bool = True
     high: float | None = None
     high_open: bool = True
+    reason: str = ""  # why the bounds are where they are, said with them
 
     @property
     def allowed(self) -> str:
@@ -131,7 +132,8 @@ class _Real:
         else:
             span = ""
         unit = f"({self.unit})" if self.unit != "1" else ""
-        return " ".join(filter(None, ["a finite number", span, unit]))
+        reason = f"({self.reason})" if self.reason else ""
+        return " ".join(filter(None, ["a finite number", span, unit, reason]))
 
     def __call__(self, value) -> float:
         x = _as_real(value)
@@ -295,6 +297,29 @@ def _nonnegative(unit):
     return _Real(unit, low=0.0, low_open=False)
 
 
+# The physical range of the inputs the contact laws stand on, each orders of magnitude wider
+# than any engineering contact. Outside it a value describes no contact the model is about,
+# and double precision cannot hold what the laws compute from it: found by a sweep of
+# extreme finite values over every positive input (session 56), a modulus of 5e-324 Pa made
+# the Hertz width divide by zero, an asperity density of 1e308 1/m^2 overflowed the
+# roughness bandwidth, a yield strength or sigma of 1e-300 gave a rough-contact table that
+# is not monotone, a cylinder radius of 1e30 m asked for 394 PiB of mesh, and a viscosity of
+# 5e-324 Pa s an infinite Poiseuille coefficient.
+ATOM = 1.0e-10  # m: below it a length is not a continuum's
+LONGEST = 1.0e3  # m: a cylinder beyond a kilometre is not a contact's
+
+
+def _length():
+    return _Real("m", low=ATOM, low_open=False, high=LONGEST, high_open=False,
+                 reason="from an atom, 1e-10 m, to a kilometre")
+
+
+def _stiffness():
+    """A modulus or strength: at least a gel's; no upper bound (a rigid body may be given a
+    large modulus, 1e300 Pa solves)."""
+    return _Real("Pa", low=1.0e3, low_open=False, reason="at least a gel's 1 kPa")
+
+
 class _Section:
     """Shared behaviour of the scene's sections."""
 
@@ -319,10 +344,10 @@ class _Section:
 
 @dataclass(frozen=True)
 class Geometry(_Section):
-    radius: float = _field(0.01, _positive("m"), "cylinder radius R")
-    length: float = _field(0.001, _positive("m"), "cylinder length along its axis (Table 1 'Width')")
+    radius: float = _field(0.01, _length(), "cylinder radius R")
+    length: float = _field(0.001, _length(), "cylinder length along its axis (Table 1 'Width')")
     crown_radius: float | None = _field(
-        None, _NotGivenOr(_positive("m")),
+        None, _NotGivenOr(_length()),
         "crown radius R_c along the axis: the gap grows by R_c - sqrt(R_c^2 - y^2) towards the ends (none: a "
         "straight cylinder, as the paper's; docs/physics.md section 11)",
     )
@@ -336,9 +361,9 @@ class Geometry(_Section):
 class Material(_Section):
     """One body; both are tin in Table 1."""
 
-    youngs_modulus: float = _field(41.4e9, _positive("Pa"), "Young's modulus E")
+    youngs_modulus: float = _field(41.4e9, _stiffness(), "Young's modulus E")
     poisson_ratio: float = _field(0.36, _Real("1", low=-1.0, high=0.5), "Poisson ratio nu")
-    yield_strength: float = _field(14.0e6, _positive("Pa"), "yield strength S_y")
+    yield_strength: float = _field(14.0e6, _stiffness(), "yield strength S_y")
     resistivity: float = _field(1.15e-7, _positive("Ohm m"), "electrical resistivity rho")
 
 
@@ -346,9 +371,13 @@ class Material(_Section):
 class Roughness(_Section):
     """Combined roughness of the two surfaces (Greenwood-Williamson statistics, Eq. 11)."""
 
-    sigma: float = _field(0.5e-6, _positive("m"), "RMS roughness sigma")
-    asperity_density: float = _field(1.0e9, _positive("1/m^2"), "areal density of asperities eta")
-    asperity_radius: float = _field(1.0e-4, _positive("m"), "asperity tip radius R_peak")
+    sigma: float = _field(0.5e-6, _Real("m", low=ATOM, low_open=False, reason="at least an atom, 1e-10 m"),
+                          "RMS roughness sigma")
+    asperity_density: float = _field(
+        1.0e9, _Real("1/m^2", low=1.0, low_open=False, high=ATOM**-2, high_open=False,
+                     reason="from one asperity per m^2 to one per atom, 1e20"),
+        "areal density of asperities eta")
+    asperity_radius: float = _field(1.0e-4, _length(), "asperity tip radius R_peak")
     hardness_model: str = _field(
         "wadwalkar", _Choice(("wadwalkar", "jg2005")), "H_G/S_y: Eq. 8 (Wadwalkar 2010) or Jackson-Green 2005"
     )
@@ -407,7 +436,9 @@ RHEOLOGY_KEYS = ("rheology", "yield_stress", "flow_index", "creep_viscosity")
 @dataclass(frozen=True)
 class Lubricant(_Section):
     # <= 1e6 Pa s (far above any lubricant): 1e200 overflowed the film coefficients (issue 13)
-    viscosity: float = _field(0.1, _Real("Pa s", low=0.0, high=1e6, high_open=False), "dynamic viscosity mu (isoviscous)")
+    viscosity: float = _field(0.1, _Real("Pa s", low=1e-6, low_open=False, high=1e6, high_open=False,
+                                         reason="from a tenth of a gas's to a stiff grease's"),
+                              "dynamic viscosity mu (isoviscous)")
     # Mineral oils conduct 0.4-2.1 pS/m (Shell Vitrea, Harvey et al., as reported in
     # "Electrical conductivity of motor oil", qsstudy.com): 1 pS/m is 1e12 ohm m.
     resistivity: float = _field(
