@@ -152,7 +152,8 @@ def test_the_long_inlet_it_replaces_is_short_of_martins_film():
 
 
 @pytest.mark.parametrize("overrides, need", [
-    ({"mesh.ny": 21}, "a line contact"),
+    ({"mesh.ny": 21, "geometry.crown_radius": 0.1}, "a straight cylinder"),
+    ({"mesh.ny": 21, "effects.cavitation": "jfo"}, "on a 2-D mesh, effects.cavitation reynolds or none"),
     ({"mesh.x_min": -1e-3, "mesh.x_max": 5e-4}, "the automatic domain"),
     ({"lubricant.rheology": "bingham", "lubricant.yield_stress": 100.0}, "a Newtonian lubricant"),
     ({"effects.asperity_contact": False}, "asperity contact"),
@@ -182,6 +183,6 @@ def test_a_starved_steady_line_is_told_of_the_far_inlet_which_floods_it():
     flooded = lc.solve(lc.load_scene(TABLE1, {**viscous, "mesh.far_inlet": True}))
     assert flooded["converged"].item() == 1 and "inlet" not in flooded.attrs["validity"]
     assert flooded["min_film_thickness"].item() > starved["min_film_thickness"].item()
-    for where_it_would_not_hold in ({"mesh.ny": 21}, {"mesh.x_min": -5e-3, "mesh.x_max": 5e-4},
+    for where_it_would_not_hold in ({"mesh.ny": 21, "geometry.crown_radius": 0.1}, {"mesh.x_min": -5e-3, "mesh.x_max": 5e-4},
                                     {"motion.kind": "stop"}):
         assert far_inlet_advice(lc.load_scene(TABLE1, {**viscous, **where_it_would_not_hold})) == ""

@@ -10,7 +10,7 @@ from functools import partial
 
 import numpy as np
 
-from lubecontact.model.fluid_film import fluid_faces, fluid_film, fluid_slopes, squeeze_content
+from lubecontact.model.fluid_film import fluid_exterior, fluid_faces, fluid_film, fluid_slopes, squeeze_content
 from lubecontact.model.model import Model, State
 from lubecontact.numerics.cavitation_jfo import solve_jfo
 from lubecontact.numerics.mesh import contact_width_estimate
@@ -40,12 +40,15 @@ def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, re
             solve_fluid = partial(solve_reynolds, cavitation=scene.effects.cavitation == "reynolds",
                                   pressure_guess=pressure_guess)
         faces, face_slopes = fluid_faces(model, film)
-        transient = {}
+        options = {}
         if model.squeeze is not None:  # a time step (unsteady/): the cells' content, squeezed
             content = squeeze_content(model, film)
-            transient = {"squeeze_rate": model.squeeze.rate(content.value)}
+            options["squeeze_rate"] = model.squeeze.rate(content.value)
+        exterior = fluid_exterior(model, film)
+        if exterior is not None:  # a 2-D mesh open to the far inlet (Reynolds cavitation only)
+            options["exterior"] = exterior
         reynolds = solve_fluid(mesh, h_t, k, scene.operating.speed, cavitated_guess=cavitated_guess, reuse=reuse,
-                               faces=faces, **transient)
+                               faces=faces, **options)
         fluid_pressure = reynolds.pressure
     return State(
         z=z,
@@ -132,6 +135,9 @@ def force_gradient(model: Model, state: State) -> np.ndarray:
         if film_slope is not None:  # the far inlet's load (fluid_load)
             options["load_weight"] = weight
             gradient += film_slope
+        exterior = fluid_exterior(model, state.film)
+        if exterior is not None:  # and a 2-D mesh's exterior flux (numerics/modal_far_inlet.py)
+            options["exterior"] = exterior
         gradient += state.reynolds.load_sensitivity(model.mesh, gap_slope, coefficient_slope, model.scene.operating.speed,
                                                     **options)
     return gradient

@@ -127,6 +127,12 @@ def fluid_faces(model: Model, film: np.ndarray):
     return values, slopes
 
 
+def fluid_exterior(model: Model, film: np.ndarray):
+    """The dense exterior of a 2-D mesh open to the far inlet at ``film``
+    (numerics/modal_far_inlet.Exterior), else None (a line's is its first face, fluid_faces)."""
+    return None if model.far_inlet is None else model.far_inlet.exterior(film)
+
+
 def fluid_slopes(model: Model, state: State):
     """(face slopes, nodal dh_T/dh, nodal dk/dh) of the film the fluid saw at ``state``, for
     the linearised Reynolds residual (force_gradient, newton.fluid_pressure_response): the

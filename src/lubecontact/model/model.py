@@ -17,6 +17,7 @@ from lubecontact.model.contact_tables import contact_table
 from lubecontact.numerics.cavitation_jfo import JFOSolution
 from lubecontact.numerics.control_volume import ControlVolumeMean
 from lubecontact.numerics.far_inlet import FarInlet
+from lubecontact.numerics.modal_far_inlet import ModalFarInlet
 from lubecontact.numerics.mesh import Mesh, build_mesh
 from lubecontact.numerics.reynolds import ReynoldsSolution
 from lubecontact.numerics.transfer import coarser_mesh
@@ -81,7 +82,7 @@ class Model:
     hydrodynamic: bool  # Reynolds solved (effect on and speed > 0)
     squeeze: SqueezeTerm | None = None  # a transient step's squeeze term, None for a steady solve
     load: AppliedLoad | None = None  # F(z) of a contact with mass and spring; None: operating.force
-    far_inlet: FarInlet | None = None  # Martin's film upstream of the mesh, on a mesh open to it
+    far_inlet: FarInlet | ModalFarInlet | None = None  # the film upstream of the mesh, on a mesh open to it
 
     @classmethod
     def assemble(cls, scene: Scene, mesh: Mesh | None = None, contact: RoughContact | None = None) -> Model:
@@ -100,7 +101,8 @@ class Model:
         hydrodynamic = bool(effects.hydrodynamics) and scene.operating.speed > 0.0
         far_inlet = None
         if mesh.far_inlet and hydrodynamic:
-            far_inlet = FarInlet.on(mesh, scene.geometry.radius, scene.lubricant.viscosity, scene.operating.speed)
+            exterior = FarInlet if mesh.line else ModalFarInlet
+            far_inlet = exterior.on(mesh, scene.geometry.radius, scene.lubricant.viscosity, scene.operating.speed)
         return cls(scene, mesh, undeformed, contact, deformation, hydrodynamic, far_inlet=far_inlet)
 
     def coarsened(self, coarsest: int) -> Model | None:

@@ -55,12 +55,12 @@ from scipy.sparse.linalg import LinearOperator, gmres, splu
 from lubecontact.model.auto_effects import decreasing_root, operating_point
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.evaluation import beyond_the_radius, film_scale, fluid_load, fluid_load_slopes
-from lubecontact.model.fluid_film import fluid_faces, fluid_film, squeeze_content, yield_stress_law
+from lubecontact.model.fluid_film import fluid_exterior, fluid_faces, fluid_film, squeeze_content, yield_stress_law
 from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.complementarity import fischer_burmeister
 from lubecontact.numerics.reynolds import ReynoldsSolution, interior_nodes, reynolds_system, solve_reynolds
-from lubecontact.numerics.reynolds_jacobian import (LinearOutflow, outflow_film_jacobian, squeeze_film_jacobian,
-                                                     with_scale_floor)
+from lubecontact.numerics.reynolds_jacobian import (LinearOutflow, exterior_film_jacobian, outflow_film_jacobian,
+                                                     squeeze_film_jacobian, with_scale_floor)
 from lubecontact.numerics.transfer import interpolate_field
 from lubecontact.numerics.yield_stress_reynolds import yield_stress_outflow
 from lubecontact.physics.film_estimates import hertz_half_width
@@ -248,7 +248,8 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
         if model.squeeze is not None:  # a time step: the cells' content, squeezed
             content = squeeze_content(model, film)
             rate = model.squeeze.rate(content.value)
-        system = reynolds_system(mesh, h_t, k, scene.operating.speed, faces, squeeze_rate=rate)
+        exterior = fluid_exterior(model, film)  # a 2-D mesh open to the far inlet
+        system = reynolds_system(mesh, h_t, k, scene.operating.speed, faces, squeeze_rate=rate, exterior=exterior)
         unknown = system.unknown
         pressure[unknown] = it.pressure[unknown]
         p = pressure[unknown]
@@ -265,6 +266,8 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
             """(dw/dh, dA_ii/dh) of the Newtonian outflow, built when a direction asks."""
             nodal = (None, None) if face_slopes is not None else fluid_film(model, film, slopes=True)[2:]
             j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, *nodal)
+            if exterior is not None:
+                j_wh = j_wh + exterior_film_jacobian(mesh, unknown, exterior, pressure)
             return (j_wh if added is None else j_wh + added()), j_sh
 
         if grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
@@ -664,7 +667,7 @@ def cold_start(model: Model) -> Iterate:
         h = model.undeformed_gap + z + delta
         h_t, k = fluid_film(model, h)
         faces, _ = fluid_faces(model, h)
-        pressure = solve_reynolds(mesh, h_t, k, scene.operating.speed, faces=faces,
+        pressure = solve_reynolds(mesh, h_t, k, scene.operating.speed, faces=faces, exterior=fluid_exterior(model, h),
                                   cavitation=scene.effects.cavitation != "none").pressure
     return Iterate(pressure, delta, z)
 

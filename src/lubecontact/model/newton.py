@@ -32,7 +32,7 @@ import numpy as np
 from scipy.sparse.linalg import LinearOperator, gmres
 
 from lubecontact.model.evaluation import fluid_load_slopes
-from lubecontact.model.fluid_film import fluid_slopes
+from lubecontact.model.fluid_film import fluid_exterior, fluid_slopes
 from lubecontact.model.model import Model, State
 from lubecontact.numerics.reynolds import interior_nodes
 
@@ -58,6 +58,8 @@ def fluid_pressure_response(model, state):
     factors = None if solution.factor is None else solution.factor.factors
     gx, gy = mesh.dy / mesh.dx, mesh.dx / mesh.dy
     content = state.squeeze_content  # a time step's cells' content (fluid_film.squeeze_content)
+    exterior = fluid_exterior(model, state.film)  # a 2-D mesh's far inlet: its outflow moves with c
+    exterior_slope = None if exterior is None else exterior.outflow_slope(p)
 
     def on_faces(v):
         """dk and dh_T of the x faces and dk of the y faces for the film change v."""
@@ -79,6 +81,8 @@ def fluid_pressure_response(model, state):
         flux_y = gy * dk_y * (p[:-1, :] - p[1:, :])
         dr[:-1, :] += flux_y
         dr[1:, :] -= flux_y
+        if exterior is not None:
+            dr[1:-1, 1] += exterior_slope * float(np.sum(exterior.offset_slope * v))
         response[free] = -factors.solve(dr[free])
         return response
 

@@ -184,7 +184,8 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
 
 def far_inlet_advice(scene) -> str:
     """What the flag ``inlet`` adds where the scene could take the far inlet instead (a steady
-    line contact on the automatic domain: numerics/mesh.far_inlet_problems), else ""."""
+    contact on the automatic domain: numerics/mesh.far_inlet_problems), else ""."""
     if scene.mesh.far_inlet or far_inlet_problems(replace(scene, mesh=replace(scene.mesh, far_inlet=True))):
         return ""
-    return ", or set mesh.far_inlet: true (Martin's film upstream as the boundary condition, docs/physics.md section 17)"
+    return (", or set mesh.far_inlet: true (the rigid film upstream as the boundary condition, docs/physics.md "
+            "section 17)")

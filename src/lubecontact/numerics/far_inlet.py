@@ -24,10 +24,10 @@ dh/dc = 1 everywhere, dI_n/dc = -n I_{n+1} and dK_n/dc = -n K_{n+1}.
 
 The mesh then needs no inlet cells (numerics/mesh.py): the automatic domain [-3.5 s, 1.5 s]
 is as flooded as an infinite inlet. A scene asks for it (mesh.far_inlet), and is refused
-where it does not hold (numerics/mesh.far_inlet_problems): a line contact
-(on a cylinder of finite length the fluid upstream also leaks sideways: a per-row exterior
-made the Table 1 film at 10 m/s on 51 x 51 4 % thicker than the long inlet, whose result
-does not move when the inlet is lengthened further), a Newtonian film (a grease's flux is
+where it does not hold (numerics/mesh.far_inlet_problems). This module is a line's
+exterior (on a cylinder of finite length the fluid upstream also leaks sideways: a per-row
+exterior made the Table 1 film at 10 m/s on 51 x 51 4 % thicker than the long inlet, so a
+2-D mesh takes numerics/modal_far_inlet.py), for a Newtonian film (a grease's flux is
 not linear in the pressure gradient), steady (a time step's squeeze makes the flux vary
 along x), rough surfaces whose films the faces carry (percolation.py), and a first node far
 above the roughness (the automatic domain's end lies where the gap is >= 122 sigma: flow
@@ -130,6 +130,11 @@ class FarInlet:
         values.gap_x[:, 0] = i2 / i3
         slopes.gap_x[:, 0] = -2.0 + 3.0 * i2 * i4 / i3**2
         return values, slopes
+
+    def exterior(self, film: np.ndarray) -> None:
+        """No dense block: a line's exterior is its first face's (``faces``); a 2-D mesh's is
+        numerics/modal_far_inlet.ModalFarInlet.exterior."""
+        return None
 
     def load(self, pressure: np.ndarray, film: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
         """(W, weights, film slope): the load the exterior adds to the mesh's trapezoidal

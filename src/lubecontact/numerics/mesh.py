@@ -27,11 +27,11 @@ the mesh has ``nodes_x(scene)`` >= nx nodes along x. Each speed thus has its own
 MAX_DOMAIN_RADII x R (Eq. 4 needs |x| < R), where the validity flag ``inlet`` reports a
 film still short of its flooded value.
 
-Where the scene asks for it (mesh.far_inlet) and the far inlet's film is known in closed
-form (numerics/far_inlet.py, far_inlet_problems: a steady Newtonian line contact between
-rough surfaces, the automatic domain) the mesh needs none of those cells:
-``build_mesh(scene)`` ends at -3.5 s and marks the mesh ``far_inlet``, and the solvers take
-the exterior from -inf as its boundary condition. A motion's mesh
+Where the scene asks for it (mesh.far_inlet) and the film upstream is the rigid one
+(numerics/far_inlet.py on a line, numerics/modal_far_inlet.py on a straight cylinder;
+far_inlet_problems: a steady Newtonian contact between rough surfaces, the automatic domain)
+the mesh needs none of those cells: ``build_mesh(scene)`` ends at -3.5 s and marks the mesh
+``far_inlet``, and the solvers take the exterior as its boundary condition. A motion's mesh
 (``far_inlet=False``, unsteady/integrator.py) keeps them: its squeeze reaches upstream.
 """
 
@@ -87,14 +87,16 @@ def film_inlet_length(scene) -> float:
 
 def far_inlet_problems(scene) -> list[str]:
     """Why the scene's mesh.far_inlet cannot serve (empty when it can, or is not asked for):
-    Martin's film in closed form (numerics/far_inlet.py) needs a line contact (on a cylinder
-    of finite length the fluid upstream leaks sideways too), the automatic domain, a
-    Newtonian lubricant (a grease's flux is not linear in its pressure gradient), rough
-    surfaces (their films on the faces) and a steady solve (a motion's squeeze reaches
-    upstream)."""
+    the rigid film upstream (numerics/far_inlet.py on a line, numerics/modal_far_inlet.py on
+    a 2-D mesh) needs a straight cylinder (one parabola for every row), on a 2-D mesh Reynolds
+    or no cavitation (its exterior is in that solve only), the automatic domain, a Newtonian
+    lubricant (a grease's flux is not linear in its pressure gradient), rough surfaces (their
+    films on the faces) and a steady solve (a motion's squeeze reaches upstream)."""
     if not scene.mesh.far_inlet:
         return []
-    needs = {"a line contact (mesh.ny: 1)": scene.mesh.ny == 1,
+    needs = {"a straight cylinder (no geometry.crown_radius)": scene.geometry.crown_radius is None,
+             "on a 2-D mesh, effects.cavitation reynolds or none (its exterior is in the Reynolds solve only)":
+                 scene.mesh.ny == 1 or scene.effects.cavitation != "jfo",
              "the automatic domain (mesh.x_min and mesh.x_max left out)": scene.mesh.x_min is None,
              "a Newtonian lubricant (lubricant.rheology: newtonian)": scene.lubricant.rheology == "newtonian",
              "asperity contact (effects.asperity_contact: true)": bool(scene.effects.asperity_contact),
@@ -171,7 +173,7 @@ class Mesh:
     x: np.ndarray  # (nx,) m
     y: np.ndarray  # (ny,) m; [0.0] in line mode
     length: float  # cylinder length L, m
-    far_inlet: bool = False  # x_min is open to Martin's film from -inf (numerics/far_inlet.py)
+    far_inlet: bool = False  # x_min is open to the rigid film upstream (numerics/far_inlet.py, modal_far_inlet.py)
 
     @property
     def nx(self) -> int:

@@ -80,9 +80,10 @@ class ReynoldsSolution:
     # no node is pressurised
     factor: object | None = None
 
-    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed, squeeze=None, load_weight=None) -> np.ndarray:
+    def load_sensitivity(self, mesh, gap_slope, coefficient_slope, speed, squeeze=None, load_weight=None,
+                         exterior=None) -> np.ndarray:
         """dW/dh_j (N/m) at this solution: module function load_sensitivity."""
-        return load_sensitivity(mesh, self, gap_slope, coefficient_slope, speed, squeeze, load_weight)
+        return load_sensitivity(mesh, self, gap_slope, coefficient_slope, speed, squeeze, load_weight, exterior)
 
 
 @dataclass(frozen=True)
@@ -131,7 +132,8 @@ def _check_fields(mesh, expected_gap, coefficient):
         raise ValueError(f"Poiseuille coefficient must be >= 0; min {coefficient.min():.3g}")
 
 
-def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_rate=None) -> ReynoldsSystem:
+def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_rate=None,
+                    exterior=None) -> ReynoldsSystem:
     """Assemble the finite-volume Reynolds equation (Eq. 1) without loops over nodes.
 
     expected_gap = h_T (ny, nx) m, coefficient = k (ny, nx) m^3/(Pa s), speed = U m/s;
@@ -140,6 +142,8 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_
     ``squeeze_rate``: dh_T/dt (ny, nx) m/s of a transient (docs/physics.md section 14): each
     cell's volume changes by dA dh_T/dt, so its net outflow is w = A p - b + dA dh_T/dt
     (the squeeze term of the time-dependent Reynolds equation); None: steady.
+    ``exterior`` (numerics/modal_far_inlet.Exterior): a 2-D mesh open to the far inlet, whose
+    first column's cells (rows 1 .. ny-2) add its dense block @ p - inflow to their outflow.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
@@ -162,15 +166,22 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_
         rows += [a[both], c[both]]
         cols += [c[both], a[both]]
         vals += [-t[both], -t[both]]
-    matrix = sp.csr_matrix(
-        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)
-    )
-
     couette = couette_face_flux(mesh, expected_gap, speed, faces)
     outflow = np.zeros(mesh.shape)
     outflow[:, 1:-1] = couette[:, 1:] - couette[:, :-1]
     if squeeze_rate is not None:
         outflow += mesh.nodal_area * squeeze_rate
+    if exterior is not None:
+        first = number[1:-1, 1]
+        if np.any(first < 0):
+            raise ValueError("the far inlet's first column has a node without flow")
+        rows.append(np.repeat(first, first.size))
+        cols.append(np.tile(first, first.size))
+        vals.append(exterior.block.ravel())
+        outflow[1:-1, 1] -= exterior.inflow
+    matrix = sp.csr_matrix(
+        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)
+    )
     return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown)
 
 
@@ -261,7 +272,7 @@ def _reusable(mesh, reuse):
 
 def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
                    cavitated_guess=None, max_iterations=100, reuse=None, faces=None,
-                   squeeze_rate=None, pressure_guess=None) -> ReynoldsSolution:
+                   squeeze_rate=None, pressure_guess=None, exterior=None) -> ReynoldsSolution:
     """Fluid pressure of Eq. (1) with p = 0 on the boundary.
 
     cavitation=True: Reynolds (Swift-Stieber) condition by the primal-dual active-set method.
@@ -276,6 +287,8 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     ``faces`` (percolation.FaceFilm): the film on the faces (reynolds_system); the nested
     cold start on coarser meshes uses the nodal fields.
     ``squeeze_rate``: dh_T/dt (ny, nx) m/s of a transient step (reynolds_system).
+    ``exterior``: the far inlet of a 2-D mesh (reynolds_system; not on the coarser meshes of
+    the cold start, which only guess the set).
     ``pressure_guess`` (ny, nx) Pa, e.g. a coarser mesh's solution interpolated to this one,
     warm-starts the set instead of ``cavitated_guess``: the set of the guess after projected
     Gauss-Seidel smoothing on this mesh's system (projected_smoothing).
@@ -284,7 +297,7 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
         raise ValueError(f"max_iterations must be >= 1, got {max_iterations}")
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
-    system = reynolds_system(mesh, expected_gap, coefficient, speed, faces, squeeze_rate)
+    system = reynolds_system(mesh, expected_gap, coefficient, speed, faces, squeeze_rate, exterior)
     matrix, rhs = system.matrix, system.rhs
     index = np.flatnonzero(system.unknown)
     nearby = _reusable(mesh, reuse)
@@ -346,7 +359,8 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) 
     return float(total)
 
 
-def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeeze=None, load_weight=None) -> np.ndarray:
+def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeeze=None, load_weight=None,
+                     exterior=None) -> np.ndarray:
     """dW/dh_j, N/m (ny, nx): how the fluid load W = sum_i p_i dA_i changes with the film at
     node j, at the solution's active set, by the adjoint method (one more solve with A_FF:
     a back-substitution with the LU factors the solve left, or a few CG steps when it
@@ -365,6 +379,8 @@ def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeez
     (reynolds_system's squeeze_rate) adds c0 (dc/dh)^T (lambda dA) to lambda^T dr/dh.
     ``load_weight`` (ny, nx, m^2): dW/dp_i where the load is not the nodal areas' sum (a mesh
     open to the far inlet, numerics/far_inlet.FarInlet.load); None: the nodal areas.
+    ``exterior`` (numerics/modal_far_inlet.Exterior): a 2-D mesh's far inlet, whose outflow
+    moves with the parabola's offset c: -lambda^T dr/dc dc/dh on the first x faces' nodes.
     """
     if solution.factor is None:
         return np.zeros(mesh.shape)
@@ -372,6 +388,8 @@ def load_sensitivity(mesh, solution, gap_slope, coefficient_slope, speed, squeez
     adjoint = np.zeros(mesh.shape)
     adjoint[free] = solution.factor.solve((mesh.nodal_area if load_weight is None else load_weight)[free])
     sensitivity = adjoint_sensitivity(mesh, adjoint, solution.pressure, gap_slope, coefficient_slope, speed)
+    if exterior is not None:
+        sensitivity -= float(adjoint[1:-1, 1] @ exterior.outflow_slope(solution.pressure)) * exterior.offset_slope
     if squeeze is not None:
         coefficient, content = squeeze
         sensitivity -= coefficient * content.transpose(adjoint * mesh.nodal_area)

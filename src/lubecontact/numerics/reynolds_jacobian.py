@@ -81,6 +81,20 @@ def outflow_film_jacobian(mesh, pressure, unknown, speed, face_slopes: FaceFilm 
     return outflow, diagonal
 
 
+def exterior_film_jacobian(mesh, unknown, exterior, pressure) -> sp.csr_matrix:
+    """d w / d h of a 2-D mesh's far inlet (numerics/modal_far_inlet.Exterior): its outflow of
+    the first column's cells moves with the parabola's offset c, which moves with the first x
+    faces' films: the rank-one (number of unknowns, number of nodes) block
+    (dw/dc) (dc/dh)^T, ``pressure`` (ny, nx) Pa."""
+    number = np.full(mesh.shape, -1)
+    number[unknown] = np.arange(int(unknown.sum()))
+    rows = number[1:-1, 1]
+    columns = np.flatnonzero(exterior.offset_slope.ravel())
+    values = np.outer(exterior.outflow_slope(pressure), exterior.offset_slope.ravel()[columns])
+    return sp.csr_matrix((values.ravel(), (np.repeat(rows, columns.size), np.tile(columns, rows.size))),
+                         shape=(int(unknown.sum()), unknown.size))
+
+
 def squeeze_film_jacobian(mesh, unknown, coefficient: float, content) -> sp.csr_matrix:
     """d w / d h of a transient step's squeeze outflow dA dh_T/dt (reynolds.reynolds_system,
     docs/physics.md section 14): (number of unknowns, number of nodes), the unknowns' rows of

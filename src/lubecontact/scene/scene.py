@@ -568,8 +568,9 @@ class MeshSettings(_Section):
     x_max: float | None = _field(None, _AutoOr(_Real("m")), "outlet end of the domain (auto: mesh.domain_x)")
     far_inlet: bool = _field(
         False, _Flag(),
-        "steady line contact on the automatic domain: Martin's film upstream of it as its boundary condition, "
-        "in place of the inlet columns (docs/physics.md section 17, \"The far inlet\"); a motion keeps them",
+        "steady contact on the automatic domain: the rigid film upstream of it as its boundary condition, in place "
+        "of the inlet columns (a line: Martin's film; a straight cylinder: its sine modes across the length; "
+        "docs/physics.md section 17, \"The far inlet\"); a motion keeps them",
     )
 
     def to_dict(self):
