@@ -12,8 +12,8 @@ from scipy.integrate import quad
 from scipy.sparse.linalg import spsolve
 
 import lubecontact as lc
-from lubecontact.numerics.mesh import Mesh, build_mesh
-from lubecontact.numerics.modal_far_inlet import FAR_RADII, ModalFarInlet, graded_grid, mode_responses
+from lubecontact.numerics.mesh import MAX_DOMAIN_RADII, Mesh, build_mesh
+from lubecontact.numerics.modal_far_inlet import ModalFarInlet, graded_grid, mode_responses
 
 TABLE1 = "config/scenes/table1.yaml"
 RADIUS, VISCOSITY, SPEED = 0.01, 0.1, 10.0
@@ -25,17 +25,21 @@ def small_mesh(ny=9, nx=12, length=1e-3):
 
 
 def finite_integral(power, offset, end, moment=False):
-    """int_{-0.9 R}^{end} (end - x)^moment (c + x^2/2R)^-power dx by adaptive quadrature."""
-    return quad(lambda x: (end - x) ** moment * (offset + x * x / (2 * RADIUS)) ** -power, -FAR_RADII * RADIUS, end,
-                points=[end - 1e-5, end - 1e-4], epsrel=1e-12, limit=500)[0]
+    """int_{-0.9 R}^{end} (end - x)^moment h^-power dx, h = c + R - sqrt(R^2 - x^2) (Eq. 4), by
+    adaptive quadrature."""
+    def integrand(x):
+        return (end - x) ** moment * (offset + RADIUS - np.sqrt(RADIUS**2 - x * x)) ** -power
+
+    return quad(integrand, -MAX_DOMAIN_RADII * RADIUS, end, points=[end - 1e-5, end - 1e-4], epsrel=1e-12, limit=500)[0]
 
 
 @pytest.mark.parametrize("offset", [1e-7, 2e-6, 3e-5])
 def test_a_mode_without_sideways_leak_is_the_lines_closed_form_exterior(offset):
     """Without the leak a mode is a line's exterior, whose flux is constant: in closed form
-    (numerics/far_inlet.py) with the integrals I_n, K_n taken from -0.9 R, where p = 0."""
+    (as numerics/far_inlet.py's, on the cylinder's gap) with the integrals I_n, K_n taken from
+    -0.9 R, where p = 0."""
     end = -1.1e-3
-    xi = graded_grid(end + FAR_RADII * RADIUS, 1e-9, 4000, 1e-5)
+    xi = graded_grid(end + MAX_DOMAIN_RADII * RADIUS, 1e-9, 4000, 1e-5)
     r = mode_responses(offset, np.zeros(1), xi, int(np.searchsorted(xi, 1e-5)), end, RADIUS, VISCOSITY, SPEED)
     i2, i3 = finite_integral(2, offset, end), finite_integral(3, offset, end)
     k2, k3 = finite_integral(2, offset, end, True), finite_integral(3, offset, end, True)
@@ -53,7 +57,7 @@ def direct_exterior(inlet: ModalFarInlet, offset: float, first_column: np.ndarra
     xi, rows, dy = inlet.xi, inlet.rows, inlet.row_spacing
     x = inlet.end - xi
     mid = 0.5 * (x[:-1] + x[1:])
-    film, film_mid = offset + x**2 / (2 * RADIUS), offset + mid**2 / (2 * RADIUS)
+    film, film_mid = offset + RADIUS - np.sqrt(RADIUS**2 - x**2), offset + RADIUS - np.sqrt(RADIUS**2 - mid**2)
     k, conduct = film**3 / (12 * VISCOSITY), film_mid**3 / (12 * VISCOSITY) / np.diff(xi)
     n = xi.size
     width = np.zeros(n)
@@ -144,3 +148,17 @@ def test_a_2d_mesh_without_its_inlet_columns_carries_the_long_inlets_film(method
     for name, tolerance in (("central_film_thickness", 2e-4), ("min_film_thickness", 2e-4),
                             ("contact_resistance", 1e-2), ("friction_coefficient", 1e-2)):
         np.testing.assert_allclose(open_mesh[name].item(), long_inlet[name].item(), rtol=tolerance, err_msg=name)
+
+
+def test_a_film_that_needs_lubricant_from_beyond_the_exteriors_end_is_flagged():
+    """The 2-D exterior stops at 0.9 R with p = 0: a small cylinder with a thick film (R = 1 mm,
+    1 Pa s at 10 m/s: X = 10.3, a rigid film 0.977 of the flooded one) needs lubricant from
+    beyond it, and the flag ``inlet`` says so, where Table 1 itself (R = 10 mm) does not."""
+    small = lc.solve(lc.load_scene(TABLE1, {"mesh.nx": 21, "mesh.ny": 21, "operating.speed": SPEED,
+                                            "lubricant.viscosity": 1.0, "geometry.radius": 1e-3,
+                                            "mesh.far_inlet": True}))
+    assert small["converged"].item() == 1 and "inlet" in small.attrs["validity"]
+    assert "beyond 0.9 R" in small.attrs["notes"] and "stops, at p = 0" in small.attrs["notes"]
+    table1 = lc.solve(lc.load_scene(TABLE1, {"mesh.nx": 21, "mesh.ny": 21, "operating.speed": SPEED,
+                                             "mesh.far_inlet": True}))
+    assert "inlet" not in table1.attrs["validity"]

@@ -1,10 +1,11 @@
 """The far inlet of a cylinder of finite length (a 2-D mesh) as an exact boundary condition
 (docs/physics.md section 17, "The far inlet").
 
-Upstream of the first Reynolds column x_1 the film is the rigid parabola h = c + x^2/(2R),
-one offset c for every row (no crown; the mean over the interior rows of the offsets through
-the first x faces' films, as numerics/far_inlet.py takes per row), with flow factors 1 and
-no deformation. There the fluid also leaks sideways towards the cylinder's ends, so each
+Upstream of the first Reynolds column x_1 the film is the rigid cylinder's,
+h = c + R - sqrt(R^2 - x^2) (Eq. 4, the mesh's own gap: the parabola of numerics/far_inlet.py
+opens 39 % slower at 0.9 R, which mattered for small cylinders), one offset c for every row
+(no crown; the mean over the interior rows of the offsets through the first x faces' films),
+with flow factors 1 and no deformation. There the fluid also leaks sideways towards the cylinder's ends, so each
 row's own exterior (the line's law) is wrong: it let 95 % more fluid in at the same
 pressures (bench/exterior_2d.py). Across the rows, with the mesh's own y differences and
 p = 0 on the ends (rows 0 and ny - 1), the steady Reynolds equation separates into the
@@ -40,13 +41,19 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import lapack
 
+from lubecontact.numerics.mesh import MAX_DOMAIN_RADII
 from lubecontact.physics.percolation import FaceFilm
 
 GRADED_NODES = 200  # nodes of the exterior's grid in xi; 400 moves the resistance of Table 1 on 201² at 10 m/s by 1e-4
 FIRST_CELL = 1.0e-3  # the grid's first cell, in mesh spacings
-FAR_RADII = 0.9  # the exterior ends at x = -FAR_RADII R, with p = 0 (numerics/mesh.MAX_DOMAIN_RADII)
-OFFSET_STEP = 1.0e-6  # the forward difference in c, relative to the gap's rise at x_1
+OFFSET_STEP = 1.0e-6  # the forward difference in c, relative to the cylinder's gap at x_1
 CACHED_OFFSETS = 16  # mode responses and exteriors kept (an evaluation asks for the same c several times)
+
+
+def cylinder_gap(x, radius: float):
+    """R - sqrt(R^2 - x^2), m: the rigid cylinder's gap above the flat (Eq. 4), in a form
+    without the cancellation of the difference (x^2 / (R + sqrt(R^2 - x^2)))."""
+    return x * x / (radius + np.sqrt(radius * radius - x * x))
 
 
 def graded_grid(length: float, first: float, nodes: int, inserted: float) -> np.ndarray:
@@ -95,11 +102,11 @@ class ModeResponses:
 
 def mode_responses(offset: float, eigenvalues: np.ndarray, xi: np.ndarray, start: int, end: float, radius: float,
                    viscosity: float, speed: float) -> ModeResponses:
-    """The modes' responses (ModeResponses) for the parabola offset c = ``offset`` on the grid
+    """The modes' responses (ModeResponses) for the cylinder's offset c = ``offset`` on the grid
     ``xi`` (x = ``end`` - xi, its node ``start`` at x_0), eigenvalues lambda_k^2 (1/m^2)."""
     x = end - xi
     mid = 0.5 * (x[:-1] + x[1:])
-    film, film_mid = offset + x * x / (2.0 * radius), offset + mid * mid / (2.0 * radius)
+    film, film_mid = offset + cylinder_gap(x, radius), offset + cylinder_gap(mid, radius)
     poiseuille = film**3 / (12.0 * viscosity)
     conduct = film_mid**3 / (12.0 * viscosity) / np.diff(xi)  # per face
     width = 0.5 * (xi[2:] - xi[:-2])  # the inner nodes' cells
@@ -172,7 +179,7 @@ class ModalFarInlet:
         eigenvalues = (2.0 / mesh.dy) ** 2 * np.sin(0.5 * np.pi * modes / (ny - 1)) ** 2
         ones = 2.0 / (ny - 1) * sine.sum(axis=1)
         start, end = float(mesh.x[0]), float(mesh.x[1])
-        xi = graded_grid(end + FAR_RADII * radius, FIRST_CELL * mesh.dx, GRADED_NODES, end - start)
+        xi = graded_grid(end + MAX_DOMAIN_RADII * radius, FIRST_CELL * mesh.dx, GRADED_NODES, end - start)
         return cls(start, end, mesh.dx, mesh.dy, radius, viscosity, speed, sine, eigenvalues, ones, xi,
                    int(np.searchsorted(xi, end - start)))
 
@@ -181,10 +188,11 @@ class ModalFarInlet:
         return self.ones.size
 
     def offset(self, film: np.ndarray) -> float:
-        """c, m: the mean over the interior rows of the parabola offsets through the first x
-        faces' films (h_0 + h_1)/2."""
+        """c, m: the mean over the interior rows of the offsets of the cylinder's gap through
+        the first x faces' films (h_0 + h_1)/2."""
         face = 0.5 * (film[1:-1, 0] + film[1:-1, 1])
-        return float(np.mean(face)) - (self.start**2 + self.end**2) / (4.0 * self.radius)
+        gap = 0.5 * (cylinder_gap(self.start, self.radius) + cylinder_gap(self.end, self.radius))
+        return float(np.mean(face)) - gap
 
     def _cached(self, key, compute):
         """``compute()`` once per ``key`` among the last CACHED_OFFSETS keys."""
@@ -199,7 +207,7 @@ class ModalFarInlet:
             offset, self.eigenvalues, self.xi, self.start_node, self.end, self.radius, self.viscosity, self.speed))
 
     def _step(self) -> float:
-        return OFFSET_STEP * self.end**2 / (2.0 * self.radius)
+        return OFFSET_STEP * cylinder_gap(self.end, self.radius)
 
     def _offset_slope(self, shape) -> np.ndarray:
         slope = np.zeros(shape)
