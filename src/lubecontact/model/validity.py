@@ -27,8 +27,11 @@ Flags:
   (:func:`lubecontact.physics.inlet.inlet_film_fraction`, h the thinnest fluid gap). The
   inlet is upstream of the sliding: at x_max where U < 0 (the return stroke of an
   oscillation, on an explicit domain; on the automatic one its steps go on the mirrored mesh,
-  whose inlet is there). Never on a mesh open to the far inlet (numerics/far_inlet.py):
-  Martin's film from -inf is the fully flooded one.
+  whose inlet is there). On a mesh open to the far inlet (numerics/far_inlet.py,
+  numerics/modal_far_inlet.py) the same test at X = 0.9 R / sqrt(2 R h): a film that needs
+  lubricant from beyond 0.9 R rests on the exterior's gap there (a line's parabola to -inf, a
+  2-D mesh's exterior stops at 0.9 R), where the cylinder and the lubrication approximation
+  part ways.
 """
 
 from __future__ import annotations
@@ -39,7 +42,7 @@ from dataclasses import replace
 import numpy as np
 
 from lubecontact.io.case_schema import VALIDITY_FLAGS
-from lubecontact.numerics.mesh import far_inlet_problems
+from lubecontact.numerics.mesh import MAX_DOMAIN_RADII, far_inlet_problems
 from lubecontact.physics.inlet import inlet_film_fraction
 from lubecontact.physics.viscosity_temperature import DATASHEET_TEMPERATURES
 from lubecontact.scene.unread_keys import unread_motion_keys_note
@@ -167,18 +170,33 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
                     f"Patir-Cheng's fitted range the pressure flow is the percolation interpolation to zero at "
                     f"h = 0 (docs/physics.md section 15), and those nodes carry "
                     f"{100 * share(state.fluid_pressure * area, thin):.3g} % of the fluid load")
-    # at rest nothing is entrained: no inlet to starve; Martin's film from -inf is fully flooded
-    if hydrodynamic and scene.operating.speed != 0.0 and not mesh.far_inlet:
+    # at rest nothing is entrained: no inlet to starve
+    if hydrodynamic and scene.operating.speed != 0.0:
         gap = state.expected_gap if state.expected_gap is not None else state.film
         thinnest = float(np.min(gap))
         end, key, node = (("x_max", "mesh.x_max: the sliding reverses", -1) if scene.operating.speed < 0.0
                           else ("x_min", "mesh.x_min", 0))
-        inlet = abs(float(mesh.x[node])) / math.sqrt(2.0 * scene.geometry.radius * thinnest)
-        fraction = inlet_film_fraction(inlet)
-        if 1.0 - fraction >= INLET_FILM_DEFICIT:
-            flags["inlet"] = (f"inlet at X = {end}/sqrt(2 R h) = {inlet:.3g} (h = {thinnest:.3g} m): a rigid film "
-                              f"would be {fraction:.3g} of the fully flooded one; lengthen the domain ({key})"
-                              + far_inlet_advice(scene))
+        scale = math.sqrt(2.0 * scene.geometry.radius * thinnest)
+        if mesh.far_inlet:  # the film upstream, up to where the cylinder's gap and the parabola part ways
+            inlet = MAX_DOMAIN_RADII * scene.geometry.radius / scale
+            fraction = inlet_film_fraction(inlet)
+            if 1.0 - fraction >= INLET_FILM_DEFICIT:
+                flags["inlet"] = (
+                    f"the flooded film needs lubricant from beyond {MAX_DOMAIN_RADII:g} R (X = {MAX_DOMAIN_RADII:g} "
+                    f"R/sqrt(2 R h) = {inlet:.3g}, "
+                    f"h = {thinnest:.3g} m: a rigid film with p = 0 there would be {fraction:.3g} of the flooded "
+                    f"one), where " + ("the far inlet takes Martin's parabola to -inf, a gap the cylinder does not "
+                                       "have" if mesh.line else "the far inlet stops, at p = 0 (beyond it Eq. 4 "
+                                       "leaves the lubrication approximation)")
+                    + ": the film is uncertain by about that much; a larger radius, or a thinner film, is within "
+                      "the model")
+        else:
+            inlet = abs(float(mesh.x[node])) / scale
+            fraction = inlet_film_fraction(inlet)
+            if 1.0 - fraction >= INLET_FILM_DEFICIT:
+                flags["inlet"] = (f"inlet at X = {end}/sqrt(2 R h) = {inlet:.3g} (h = {thinnest:.3g} m): a rigid film "
+                                  f"would be {fraction:.3g} of the fully flooded one; lengthen the domain ({key})"
+                                  + far_inlet_advice(scene))
     return flags
 
 
