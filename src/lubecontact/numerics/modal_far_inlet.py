@@ -2,12 +2,13 @@
 (docs/physics.md section 17, "The far inlet").
 
 Upstream of the first Reynolds column x_1 the film is the rigid cylinder's,
-h = c + R - sqrt(R^2 - x^2) (Eq. 4, the mesh's own gap: the parabola of numerics/far_inlet.py
-opens 39 % slower at 0.9 R, which mattered for small cylinders), one offset c for every row
-(no crown; the mean over the interior rows of the offsets through the first x faces' films),
-with flow factors 1 and no deformation. There the fluid also leaks sideways towards the cylinder's ends, so each
-row's own exterior (the line's law) is wrong: it let 95 % more fluid in at the same
-pressures (bench/exterior_2d.py). Across the rows, with the mesh's own y differences and
+h = c + R - sqrt(R^2 - x^2) (Eq. 4, the mesh's own gap; the parabola of numerics/far_inlet.py
+is 39 % narrower at 0.9 R, and with it Fig. 4's resistances moved by up to 0.078 in ln R
+against the long inlet, with the circle 0.004), one offset c for every row (no crown; the
+mean over the interior rows of the offsets through the first x faces' films), with flow
+factors 1 and no deformation. There the fluid also leaks sideways towards the cylinder's
+ends, so each row's own exterior (the line's law) is wrong: it let 95 % more fluid in at
+the same pressures (bench/exterior_2d.py). Across the rows, with the mesh's own y differences and
 p = 0 on the ends (rows 0 and ny - 1), the steady Reynolds equation separates into the
 discrete sine modes s_k(j) = sin(k pi j / (ny - 1)), k = 1 .. ny - 2, whose y operator has
 the eigenvalues -lambda_k^2, lambda_k^2 = (2/dy)^2 sin^2(k pi / (2 (ny - 1))):
