@@ -267,7 +267,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
             nodal = (None, None) if face_slopes is not None else fluid_film(model, film, slopes=True)[2:]
             j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, *nodal)
             if exterior is not None:
-                j_wh = j_wh + exterior_film_jacobian(mesh, unknown, exterior, pressure)
+                j_wh = j_wh + exterior_film_jacobian(unknown, exterior, pressure)
             return (j_wh if added is None else j_wh + added()), j_sh
 
         if grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)

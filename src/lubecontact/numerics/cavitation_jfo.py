@@ -54,6 +54,7 @@ from lubecontact.numerics.reynolds import (
     interior_nodes,
     reynolds_system,
     solve_reynolds,
+    unknown_numbers,
 )
 from lubecontact.numerics.transfer import coarser_mesh, interpolate_field
 
@@ -97,9 +98,8 @@ def _couette_operator(mesh, expected_gap, speed, unknown, faces=None):
     shape = mesh.shape
     c = couette_face_flux(mesh, expected_gap, speed, faces)  # (ny, nx-1), signed
     index = np.arange(shape[0] * shape[1]).reshape(shape)
-    number = np.full(shape, -1)
+    number = unknown_numbers(unknown)
     n = int(unknown.sum())
-    number[unknown] = np.arange(n)
     left, right = index[:, :-1], index[:, 1:]
     source = left if speed >= 0.0 else right  # upwind node of each face
     # face f carries c_f theta[source]; it leaves ``left`` (+) and enters ``right`` (-)

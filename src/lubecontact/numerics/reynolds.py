@@ -104,6 +104,13 @@ def interior_nodes(shape: tuple[int, int], line: bool) -> np.ndarray:
     return interior
 
 
+def unknown_numbers(unknown: np.ndarray) -> np.ndarray:
+    """Each node's index among the unknowns (C order) of the mask ``unknown``, -1 off them."""
+    number = np.full(unknown.shape, -1)
+    number[unknown] = np.arange(int(unknown.sum()))
+    return number
+
+
 def face_transmissibilities(mesh, coefficient, faces=None):
     """T of x faces (ny, nx-1) and y faces (ny-1, nx; empty in line mode), m^3/(Pa s): means
     of the nodal k, or ``faces`` (percolation.FaceFilm) evaluated at the faces."""
@@ -156,9 +163,8 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_
     diagonal[:-1, :] += ty
     diagonal[1:, :] += ty
     unknown = interior_nodes(mesh.shape, mesh.line) & (diagonal > 0.0)
-    number = np.full(mesh.shape, -1)
+    number = unknown_numbers(unknown)
     n = int(unknown.sum())
-    number[unknown] = np.arange(n)
 
     rows, cols, vals = [np.arange(n)], [np.arange(n)], [diagonal[unknown]]
     for a, c, t in ((number[:, :-1], number[:, 1:], tx), (number[:-1, :], number[1:, :], ty)):

@@ -22,6 +22,7 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 
+from lubecontact.numerics.reynolds import unknown_numbers
 from lubecontact.physics.percolation import FaceFilm
 
 
@@ -40,8 +41,7 @@ def assembled(mesh, unknown, faces) -> sp.csr_matrix:
     """The (unknowns, nodes) matrix of per-face contributions ``faces``: each a tuple (node a,
     node b, d/dh_a, d/dh_b, sign at a, sign at b) adding sign x slope to the rows of a and b."""
     ny, nx = mesh.shape
-    number = np.full(mesh.shape, -1)
-    number[unknown] = np.arange(int(unknown.sum()))
+    number = unknown_numbers(unknown)
     rows, cols, vals = [], [], []
     for a, b, slope_a, slope_b, sign_a, sign_b in faces:
         for cell, sign in ((a, sign_a), (b, sign_b)):
@@ -81,14 +81,12 @@ def outflow_film_jacobian(mesh, pressure, unknown, speed, face_slopes: FaceFilm 
     return outflow, diagonal
 
 
-def exterior_film_jacobian(mesh, unknown, exterior, pressure) -> sp.csr_matrix:
+def exterior_film_jacobian(unknown, exterior, pressure) -> sp.csr_matrix:
     """d w / d h of a 2-D mesh's far inlet (numerics/modal_far_inlet.Exterior): its outflow of
-    the first column's cells moves with the parabola's offset c, which moves with the first x
-    faces' films: the rank-one (number of unknowns, number of nodes) block
-    (dw/dc) (dc/dh)^T, ``pressure`` (ny, nx) Pa."""
-    number = np.full(mesh.shape, -1)
-    number[unknown] = np.arange(int(unknown.sum()))
-    rows = number[1:-1, 1]
+    the first column's cells moves with the offset c of the cylinder's gap upstream, which
+    moves with the first x faces' films: the rank-one (number of unknowns, number of nodes)
+    block (dw/dc) (dc/dh)^T, ``pressure`` (ny, nx) Pa."""
+    rows = unknown_numbers(unknown)[1:-1, 1]
     columns = np.flatnonzero(exterior.offset_slope.ravel())
     values = np.outer(exterior.outflow_slope(pressure), exterior.offset_slope.ravel()[columns])
     return sp.csr_matrix((values.ravel(), (np.repeat(rows, columns.size), np.tile(columns, rows.size))),
