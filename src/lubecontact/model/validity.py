@@ -177,23 +177,20 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
         end, key, node = (("x_max", "mesh.x_max: the sliding reverses", -1) if scene.operating.speed < 0.0
                           else ("x_min", "mesh.x_min", 0))
         scale = math.sqrt(2.0 * scene.geometry.radius * thinnest)
-        if mesh.far_inlet:  # the film upstream, up to where the cylinder's gap and the parabola part ways
-            inlet = MAX_DOMAIN_RADII * scene.geometry.radius / scale
-            fraction = inlet_film_fraction(inlet)
-            if 1.0 - fraction >= INLET_FILM_DEFICIT:
+        # on an open mesh, the film upstream up to where the exterior's gap leaves the cylinder's ground
+        inlet = (MAX_DOMAIN_RADII * scene.geometry.radius if mesh.far_inlet else abs(float(mesh.x[node]))) / scale
+        fraction = inlet_film_fraction(inlet)
+        if 1.0 - fraction >= INLET_FILM_DEFICIT:
+            if mesh.far_inlet:
                 flags["inlet"] = (
                     f"the flooded film needs lubricant from beyond {MAX_DOMAIN_RADII:g} R (X = {MAX_DOMAIN_RADII:g} "
-                    f"R/sqrt(2 R h) = {inlet:.3g}, "
-                    f"h = {thinnest:.3g} m: a rigid film with p = 0 there would be {fraction:.3g} of the flooded "
-                    f"one), where " + ("the far inlet takes Martin's parabola to -inf, a gap the cylinder does not "
-                                       "have" if mesh.line else "the far inlet stops, at p = 0 (beyond it Eq. 4 "
-                                       "leaves the lubrication approximation)")
+                    f"R/sqrt(2 R h) = {inlet:.3g}, h = {thinnest:.3g} m: a rigid film with p = 0 there would be "
+                    f"{fraction:.3g} of the flooded one), where "
+                    + ("the far inlet takes Martin's parabola to -inf, a gap the cylinder does not have" if mesh.line
+                       else "the far inlet stops, at p = 0 (beyond it Eq. 4 leaves the lubrication approximation)")
                     + ": the film is uncertain by about that much; a larger radius, or a thinner film, is within "
                       "the model")
-        else:
-            inlet = abs(float(mesh.x[node])) / scale
-            fraction = inlet_film_fraction(inlet)
-            if 1.0 - fraction >= INLET_FILM_DEFICIT:
+            else:
                 flags["inlet"] = (f"inlet at X = {end}/sqrt(2 R h) = {inlet:.3g} (h = {thinnest:.3g} m): a rigid film "
                                   f"would be {fraction:.3g} of the fully flooded one; lengthen the domain ({key})"
                                   + far_inlet_advice(scene))

@@ -88,7 +88,7 @@ def film_inlet_length(scene) -> float:
 def far_inlet_problems(scene) -> list[str]:
     """Why the scene's mesh.far_inlet cannot serve (empty when it can, or is not asked for):
     the rigid film upstream (numerics/far_inlet.py on a line, numerics/modal_far_inlet.py on
-    a 2-D mesh) needs a straight cylinder (one parabola for every row), on a 2-D mesh Reynolds
+    a 2-D mesh) needs a straight cylinder (one gap for every row), on a 2-D mesh Reynolds
     or no cavitation (its exterior is in that solve only), the automatic domain, a Newtonian
     lubricant (a grease's flux is not linear in its pressure gradient), rough surfaces (their
     films on the faces) and a steady solve (a motion's squeeze reaches upstream)."""

@@ -188,6 +188,16 @@ class ModalFarInlet:
     def rows(self) -> int:
         return self.ones.size
 
+    @property
+    def projection(self) -> np.ndarray:
+        """(m, m): the modes of the first column's pressures, P_k = projection @ p."""
+        return 2.0 / (self.rows + 1) * self.sine
+
+    @property
+    def mode_width(self) -> float:
+        """dy sum_j s_k(j) / f_k = dy (ny - 1)/2, m: a mode's width over the rows."""
+        return self.row_spacing * (self.rows + 1) / 2.0
+
     def offset(self, film: np.ndarray) -> float:
         """c, m: the mean over the interior rows of the offsets of the cylinder's gap through
         the first x faces' films (h_0 + h_1)/2."""
@@ -218,8 +228,7 @@ class ModalFarInlet:
     def _system(self, responses: ModeResponses) -> tuple[np.ndarray, np.ndarray]:
         """(block, inflow) of the first column's cells at one offset."""
         flux_u, flux_v = responses.flux
-        project = 2.0 / (self.rows + 1) * self.sine  # P_k = project @ p
-        block = -self.row_spacing * (self.sine.T * flux_u) @ project
+        block = -self.row_spacing * (self.sine.T * flux_u) @ self.projection
         return block, self.row_spacing * self.sine.T @ (self.ones * flux_v)
 
     def exterior(self, film: np.ndarray) -> Exterior:
@@ -243,9 +252,8 @@ class ModalFarInlet:
         """(weights (m,) m^2 on the first column's pressures, constant N) of the load upstream
         of x_1, without the first column's half cells."""
         load_u, load_v = responses.load
-        project = 2.0 / (self.rows + 1) * self.sine
-        width = self.row_spacing * (self.rows + 1) / 2.0  # dy sum_j s_k(j) = dy f_k (ny - 1)/2
-        return width * (self.ones * load_u) @ project, width * float(np.sum(self.ones**2 * load_v))
+        return (self.mode_width * (self.ones * load_u) @ self.projection,
+                self.mode_width * float(np.sum(self.ones**2 * load_v)))
 
     def load(self, pressure: np.ndarray, film: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
         """(W, weights, film slope) as numerics/far_inlet.FarInlet.load: the load upstream of
@@ -266,14 +274,13 @@ class ModalFarInlet:
         """(p at x_0 (ny,) Pa, shear upstream of x_0 N) as numerics/far_inlet.FarInlet.upstream,
         from the same modes: sum_j dy (mu U / h + (h/2) dp/dx) over the interior rows."""
         responses = self.responses(self.offset(film))
-        modes = 2.0 / (self.rows + 1) * self.sine @ pressure[1:-1, 1]
+        modes = self.projection @ pressure[1:-1, 1]
         at_u, at_v = responses.at_start
         shear_u, shear_v = responses.shear
         boundary = np.zeros(pressure.shape[0])
         boundary[1:-1] = self.sine.T @ (modes * at_u + self.ones * at_v)
-        width = self.row_spacing * (self.rows + 1) / 2.0
         shear = (self.row_spacing * self.rows * responses.couette_shear
-                 + width * float(np.sum(self.ones * (modes * shear_u + self.ones * shear_v))))
+                 + self.mode_width * float(np.sum(self.ones * (modes * shear_u + self.ones * shear_v))))
         return boundary, shear
 
 
