@@ -16,7 +16,9 @@ def test_case_with_fields_and_sweep_pass_the_cf_checker(tmp_path):
     case, swept = tmp_path / "case.nc", tmp_path / "sweep.nc"
     assert cli.main(["solve", SCENE, *COARSE, "--fields", "--out", str(case)]) == 0
     assert cli.main(["sweep", SCENE, *COARSE, "--speeds", "0.01,1", "--out", str(swept)]) == 0
-    assert cf_findings(case) + cf_findings(swept) == []
+    both = tmp_path / "both.nc"  # a sweep both ways: a (direction, speed) file with a text coordinate
+    assert cli.main(["sweep", SCENE, *COARSE, "--speeds", "0.01,1", "--direction", "both", "--out", str(both)]) == 0
+    assert cf_findings(case) + cf_findings(swept) + cf_findings(both) == []
 
 
 def test_the_checker_sees_a_fill_value_on_a_coordinate(tmp_path):

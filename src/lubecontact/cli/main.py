@@ -40,6 +40,10 @@ def _parser() -> argparse.ArgumentParser:
     sweep.add_argument("--speeds", required=True,
                        help="comma list in m/s (0.001,0.01,0.1) or log range START:STOP:N (1e-4:10:25)")
     sweep.add_argument("--out", required=True, help="output netCDF file (new path or regular file; links are followed)")
+    sweep.add_argument("--direction", choices=["up", "down", "both"], default="up",
+                       help="order of the continuation: up (default) from the slowest speed, down from the fastest, "
+                            "both: the two along a direction dimension, where a contact with two steady states "
+                            "(lift-off and touch-down) differs (docs/physics.md section 23)")
     sweep.add_argument("--force-size", action="store_true", help="solve even if the memory estimate exceeds this machine's")
 
     transient = sub.add_parser("transient", help="follow the scene's motion: (stop, start, oscillation, table) in time")
@@ -255,7 +259,7 @@ def _run(args) -> int:
             return EXIT_NOT_CONVERGED
         write, effects_run, values = result.write, result.attrs["effects_run"], result.scalars
         why = result.attrs["notes"]  # a point that did not converge says why (the file has it too)
-        speeds, validity_notes = [scene.operating.speed], result.attrs["validity_notes"]
+        speeds, validity_notes, hysteresis = [scene.operating.speed], result.attrs["validity_notes"], []
     elif args.command == "transient":
         from lubecontact.cli.transient import run_transient
 
@@ -264,18 +268,23 @@ def _run(args) -> int:
         from lubecontact.io.case_schema import write_case
         from lubecontact.studies.sweep import sweep
 
-        ds = sweep(scene, speeds)
+        ds = sweep(scene, speeds, direction=args.direction)
         write, effects_run = (lambda path: write_case(ds, path)), ds.attrs["effects_run"]
         values = {name: ds[name].values for name in (*_SHOWN, *_JUDGED)}
         speeds, validity_notes = ds["speed"].values, ds.attrs["validity_notes"]
-        why = "each point's notes are in the file"
+        why, hysteresis = "each point's notes are in the file", []
+        if "direction" in ds.dims:  # (direction, speed): each value with its speed, and how the two differ
+            import numpy as np
+
+            speeds = np.broadcast_to(speeds, ds["contact_resistance"].shape).ravel()
+            hysteresis = [f"  hysteresis: {ds.attrs['hysteresis']}"]
     try:
         write(out)
     except OSError as err:
         print(f"lubecontact: could not write {args.out}: {err.strerror or err}; the result is lost", file=sys.stderr)
         return EXIT_NOT_CONVERGED
     print(_summary(effects_run, values))
-    print("\n".join(_findings(values, speeds, validity_notes, scene.interface.open_resistance)))
+    print("\n".join([*_findings(values, speeds, validity_notes, scene.interface.open_resistance), *hysteresis]))
     print(f"wrote {args.out}")
     if not _converged(values):
         print(f"lubecontact: the solve did NOT converge (converged = 0 in the file): {why}", file=sys.stderr)
