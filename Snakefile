@@ -1,5 +1,5 @@
 # lubecontact: regenerate the figures of Jackson & Angadi (2022), Lubricants 10, 32, and the
-# project's own (accuracy, measured surfaces, transients).
+# project's own (accuracy, measured surfaces, transients, two steady states).
 #
 #   snakemake --workflow-profile workflow/profiles/default                 # all figures
 #   snakemake --workflow-profile workflow/profiles/default --configfile config/test.yaml
@@ -29,6 +29,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/surfaces.smk"
 include: "workflow/rules/transient.smk"
+include: "workflow/rules/hysteresis.smk"
 include: "workflow/rules/report.smk"
 
 
@@ -40,6 +41,7 @@ localrules:
     accuracy_figure,
     surfaces_psd,
     transient_figure,
+    hysteresis_figure,
 
 
 # The netCDF products besides the cases: each is a target of rule all, and at start one that
@@ -50,6 +52,7 @@ DATASETS = [
     *(f"{RESULTS}/data/{name}.nc" for name in [*FIGURES, "accuracy_cost", *(f"transient_{n}" for n in TRANSIENT_LADDERS)]),
     f"{RESULTS}/accuracy/study.nc",
     *(f"{RESULTS}/transient/{case}.nc" for case in TRANSIENT_OVERRIDES),
+    *(f"{RESULTS}/hysteresis/{curve}.nc" for curve in HYSTERESIS_CURVES),
 ]
 if _main_process:
     for _folder in dict.fromkeys(str(Path(p).parent) for p in DATASETS):
@@ -71,4 +74,5 @@ rule all:
         expand(f"{RESULTS}/figures/surfaces_psd.{{ext}}", ext=["png", "pdf"]) if SURFACE_FILES else [],
         expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=TRANSIENT_FIGURES, ext=["png", "pdf"]),
         expand(f"{RESULTS}/data/transient_{{name}}.md", name=TRANSIENT_LADDERS),
+        expand(f"{RESULTS}/figures/{{figure}}.{{ext}}", figure=HYSTERESIS_FIGURES, ext=["png", "pdf"]),
     default_target: True

@@ -8,6 +8,8 @@ the same speed and far apart, the discrete problem has two solutions and a sweep
 depends on where it came from. Where the contact has one state both directions agree.
 """
 
+import re
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -17,6 +19,8 @@ from lubecontact.cli import main as cli
 from lubecontact.model.coupling import WarmStart
 from lubecontact.model.model import Model
 from lubecontact.model.monolithic_newton import Iterate, converged, linearise
+from lubecontact.plotting.hysteresis import hysteresis_figure
+from lubecontact.studies import figure_grids, hysteresis_cases
 
 TABLE1 = "config/scenes/table1.yaml"
 # Fig. 8's heaviest force on a 31 x 31 mesh (a second a sweep): its lift-off loop spans
@@ -88,3 +92,41 @@ def test_sweep_refuses_a_direction_it_does_not_know():
         lc.sweep(lc.load_scene(TABLE1), [0.1], direction="sideways")
     with pytest.raises(SystemExit):
         cli.main(["sweep", TABLE1, "--speeds", "0.1", "--direction", "sideways", "--out", "x.nc"])
+
+
+def test_a_figure_grid_gives_one_continuation_case_per_curve():
+    specs = {name: figure_grids.figure_spec(name, "config/figures", {"fig08": {
+        "set": {"mesh.nx": 15, "mesh.ny": 11}, "sweep": {"operating.force": [5.0, 20.0]}, "speeds": [0.1, 0.001, 1.0]}})
+        for name in ("fig08",)}
+    grid = figure_grids.expand_all(specs)["fig08"]
+    cases = hysteresis_cases.curve_cases(grid)
+    assert [c["label"] for c in cases] == ["normal force on the cylinder F = 5 N", "normal force on the cylinder F = 20 N"]
+    assert all(c["speeds"] == [0.001, 0.1, 1.0] and "operating.speed" not in c["set"] for c in cases)
+    assert all(re.fullmatch(r"[0-9a-f]{16}", c["id"]) for c in cases) and cases[0]["id"] != cases[1]["id"]
+    # a speed more renames the curve (its file is another case); the same grid gives the same ids
+    specs["fig08"]["speeds"] = [0.001, 0.1, 1.0, 10.0]
+    assert {c["id"] for c in hysteresis_cases.curve_cases(figure_grids.expand_all(specs)["fig08"])}.isdisjoint(
+        c["id"] for c in cases)
+    assert hysteresis_cases.curve_cases(grid) == cases
+    assert hysteresis_cases.study_problems(["fig08", "fig99"], {"fig08": grid}) == [
+        "hysteresis: fig99 is not among the figures of this config (fig08)"]
+
+
+def test_the_figure_draws_both_branches_with_units_and_marks_a_failed_point():
+    speeds = [0.0631, 0.1, 0.158]
+    ds = lc.sweep(lc.load_scene(TABLE1, HEAVY), speeds, direction="both", progress=False)
+    failed = ds.copy(deep=True)
+    failed["converged"].loc[{"direction": "down", "speed": 0.1}] = 0
+    fig = hysteresis_figure([("20 N", ds), ("20 N, one point failed", failed)], "title")
+    resistance, share = fig.axes[:2]
+    assert resistance.get_xlabel() == "sliding speed U of the block (m/s)" and resistance.get_ylabel().endswith("(\u03a9)")
+    assert share.get_ylabel() == "fluid share of the load F_fluid/F (\u2013)" and resistance.get_yscale() == "log"
+    # per curve and direction: the line, then its failed points (red crosses): 2 curves x 2 ways
+    crosses = [line for line in share.get_lines() if line.get_marker() == "x"]
+    assert [len(line.get_xdata()) for line in crosses] == [0, 0, 0, 1]
+    drawn = [line for line in share.get_lines() if line.get_marker() == "."]
+    for line, way in zip(drawn, ("up", "down")):  # each branch as the sweep found it (they part at 0.1 m/s)
+        np.testing.assert_array_equal(line.get_ydata(), ds["fluid_load_fraction"].sel(direction=way).values)
+    assert drawn[0].get_linestyle() == "-" and drawn[1].get_linestyle() == "--"
+    legend = [text.get_text() for text in share.get_legend().get_texts()]
+    assert {"speeding up", "slowing down", "did not converge", "20 N"} <= set(legend)

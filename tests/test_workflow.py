@@ -94,6 +94,9 @@ SURFACES = {"surfaces_psd": 1}
 # 41, tolerances 3e-3 and 1e-3; 31 nodes at 1e-2 is the stop figure's case) with their table,
 # and 2 greases, which are also the yield-stress chart's 2 cases
 TRANSIENT = {"transient_case": 15, "transient_figure": 7, "transient_accuracy": 1}
+# the curves swept speeding up and slowing down (workflow/rules/hysteresis.smk, config key
+# hysteresis: [fig08]): test.yaml's fig08 has 2 curves (5 and 10 N) of 4 speeds, one figure
+HYSTERESIS = {"hysteresis_curve": 2, "hysteresis_figure": 1}
 TRANSIENT_FIGURES = ["transient_stop", "transient_reconnect", "transient_temperature", "transient_vibration",
                      "transient_shock", "transient_accuracy", "transient_grease", "transient_yield_stress"]
 
@@ -113,7 +116,8 @@ def test_tiny_config_plans_every_figure(fresh):
     # speeds. With the full electrical path (fig04p-10p): 1 + 4 curves; fig12: 2 x 2 curves
     # of 3 speeds, one of them 3 of the 4 cases of fig08p's 10 N curve (the figure planned
     # first claims them, the other keeps its own: one job more): 4 jobs; 16 figures; the transient cases and figures.
-    assert planned(fresh, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **TRANSIENT)
+    assert planned(fresh, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **TRANSIENT,
+                                            **HYSTERESIS)
 
 
 @pytest.mark.slow
@@ -130,7 +134,9 @@ def test_default_grids(fresh):
     # greases at 0.5 N + 5 yield stresses x 3 forces (3 of them the grease figure's)
     transient = {"transient_case": 5 + 21 - 3 + 12 + 1 + 3 + 6 + 4 + 15 - 3, "transient_figure": 7,
                  "transient_accuracy": 1}
-    assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient)
+    # fig08's 5 forces, each curve swept both ways
+    assert planned(fresh) == Counter(solve=55, collect=16, plot=16, all=1, **ACCURACY, **SURFACES, **transient,
+                                     hysteresis_curve=5, hysteresis_figure=1)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     specs = {f: grid.figure_spec(f, ROOT / config["figure_dir"]) for f in config["figures"]}
     cases = {c for g in grid.expand_all(specs, ROOT).values() for c in g.unique_cases()}
@@ -254,7 +260,7 @@ def test_transient_cases_have_units_and_reconnect(built):
 
 @pytest.mark.slow
 def test_figures_are_images(built):
-    for figure in FIGURES + ["surfaces_psd"] + TRANSIENT_FIGURES:
+    for figure in FIGURES + ["surfaces_psd", "hysteresis_fig08"] + TRANSIENT_FIGURES:
         png = built / "results" / "test" / "figures" / f"{figure}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         height, width, _ = imread(png).shape
@@ -272,7 +278,7 @@ def test_plot_style_change_only_redraws(built):
     with edited(built / "config" / "figures" / "fig06.yaml", 'title: "cylinder radius R"', 'title: "radius"'):
         assert planned(built, *TINY) == Counter(plot=1, all=1)
     with edited(built / "src" / "lubecontact" / "plotting" / "figures.py", '"\\u2013",\n', '"-",\n'):
-        assert planned(built, *TINY) == Counter(plot=16, all=1)
+        assert planned(built, *TINY) == Counter(plot=16, hysteresis_figure=1, all=1)  # it draws with figures.py's styles
     # the collecting code re-collects (found by a hostile run in the thirtieth session: an
     # edit of it left every dataset stale)
     with edited(built / "src" / "lubecontact" / "studies" / "collect.py", '"""', '"""Edited. '):
@@ -292,7 +298,7 @@ def test_one_grid_value_solves_one_curve(built):
 def test_solver_change_resolves_every_case_and_content_decides(built):
     solver = built / "src" / "lubecontact" / "model" / "coupling.py"  # the coupling loop: steady and transient
     with edited(solver, '"""', '"""Edited. '):  # the transient cases run the solver too
-        assert planned(built, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY, **TRANSIENT)
+        assert planned(built, *TINY) == Counter(solve=18, collect=16, plot=16, all=1, **ACCURACY, **TRANSIENT, **HYSTERESIS)
     # restored: newer time stamp, same content -> nothing to do
     assert planned(built, *TINY) == Counter()
 
@@ -341,7 +347,8 @@ def test_products_pass_the_cf_checker(built):
 
     out = built / "results" / "test"
     case = next((out / "cases").glob("*.nc"))
-    files = [case, out / "data" / "fig03.nc", out / "data" / "fig04.nc", out / "data" / "accuracy_cost.nc", out / "accuracy" / "study.nc"]
+    files = [case, out / "data" / "fig03.nc", out / "data" / "fig04.nc", out / "data" / "accuracy_cost.nc", out / "accuracy" / "study.nc",
+             next((out / "hysteresis").glob("*.nc"))]
     assert [f for path in files for f in cf_findings(path)] == []
 
 

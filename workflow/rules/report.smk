@@ -58,5 +58,7 @@ config["_run"] = {
     "figures": [_figure_facts(f) for f in FIGURES],
     "transient": [_transient_facts(f.removeprefix("transient_")) for f in TRANSIENT_FIGURES],
     "surfaces": SURFACE_FILES,
+    "hysteresis": [{"figure": f"hysteresis_{name}", "title": SPECS[name]["title"], "curves": len(cases)}
+                   for name, cases in HYSTERESIS.items()],
     "accuracy": ", ".join(str(n) for n in ACCURACY["meshes"]) + " nodes a side",
 }
