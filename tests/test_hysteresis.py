@@ -66,6 +66,22 @@ def test_sweep_both_ways_returns_each_branch_and_says_where_they_part():
     assert ds.attrs["validity_notes"].startswith("up, 0.01 m/s")
 
 
+def test_a_continued_point_that_fails_is_solved_cold_and_says_so(tmp_path, capsys):
+    # slowing down on the default 51 x 51 mesh at 20 N: the state continued from 0.178 m/s
+    # does not converge at 0.158 m/s (bench/HYSTERESIS.md); a cold start there does
+    speeds = np.geomspace(0.0631, 0.251, 13)[-5:]
+    scene = lc.load_scene(TABLE1, {"operating.force": 20.0})
+    out = tmp_path / "down.nc"
+    assert cli.main(["sweep", TABLE1, "--set", "operating.force=20", "--speeds", ",".join(repr(float(u)) for u in speeds),
+                     "--direction", "down", "--out", str(out)]) == 0
+    assert f"cold restart at {speeds[0]:g} m/s" in capsys.readouterr().out
+    ds = xr.load_dataset(out)
+    assert ds["converged"].values.tolist() == [1] * 5 and ds["cold_restart"].values.tolist() == [1, 0, 0, 0, 0]
+    cold = lc.solve(scene.replace({"operating.speed": float(speeds[0])}))
+    assert ds["fluid_load_fraction"].values[0] == pytest.approx(cold["fluid_load_fraction"].item(), rel=1e-9)
+    assert "cold start" in ds["cold_restart"].attrs["long_name"] and ds["cold_restart"].attrs["units"] == "1"
+
+
 def test_where_the_contact_has_one_state_both_directions_agree():
     # Table 1 (5 N) from boundary to full film on a coarse mesh: speeding up, slowing down and
     # each point cold give one curve (tests/test_lubricated.py checks up against cold)
@@ -117,6 +133,7 @@ def test_the_figure_draws_both_branches_with_units_and_marks_a_failed_point():
     ds = lc.sweep(lc.load_scene(TABLE1, HEAVY), speeds, direction="both", progress=False)
     failed = ds.copy(deep=True)
     failed["converged"].loc[{"direction": "down", "speed": 0.1}] = 0
+    failed["cold_restart"].loc[{"direction": "up", "speed": 0.158}] = 1
     fig = hysteresis_figure([("20 N", ds), ("20 N, one point failed", failed)], "title")
     resistance, share = fig.axes[:2]
     assert resistance.get_xlabel() == "sliding speed U of the block (m/s)" and resistance.get_ylabel().endswith("(\u03a9)")
@@ -129,4 +146,6 @@ def test_the_figure_draws_both_branches_with_units_and_marks_a_failed_point():
         np.testing.assert_array_equal(line.get_ydata(), ds["fluid_load_fraction"].sel(direction=way).values)
     assert drawn[0].get_linestyle() == "-" and drawn[1].get_linestyle() == "--"
     legend = [text.get_text() for text in share.get_legend().get_texts()]
+    rings = [line for line in share.get_lines() if line.get_marker() == "o"]
+    assert [len(line.get_xdata()) for line in rings] == [0, 0, 1, 0]
     assert {"speeding up", "slowing down", "did not converge", "20 N"} <= set(legend)

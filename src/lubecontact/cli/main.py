@@ -273,11 +273,16 @@ def _run(args) -> int:
         values = {name: ds[name].values for name in (*_SHOWN, *_JUDGED)}
         speeds, validity_notes = ds["speed"].values, ds.attrs["validity_notes"]
         why, hysteresis = "each point's notes are in the file", []
-        if "direction" in ds.dims:  # (direction, speed): each value with its speed, and how the two differ
-            import numpy as np
+        import numpy as np
 
+        if "direction" in ds.dims:  # (direction, speed): each value with its speed, and how the two differ
             speeds = np.broadcast_to(speeds, ds["contact_resistance"].shape).ravel()
             hysteresis = [f"  hysteresis: {ds.attrs['hysteresis']}"]
+        restarted = ds["cold_restart"].values.ravel() == 1
+        if restarted.any():
+            hysteresis.append(f"  cold restart at {', '.join(f'{u:g}' for u in speeds[restarted])} m/s: the state "
+                              "continued from the previous speed did not converge there, and a cold start did "
+                              "(cold_restart = 1: the branch followed may end there)")
     try:
         write(out)
     except OSError as err:

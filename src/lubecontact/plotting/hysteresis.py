@@ -19,6 +19,8 @@ from lubecontact.plotting.transient import wrapped
 # each direction of a sweep (studies/sweep.DIRECTIONS): its line style and its words in the legend
 WAYS = {"up": ("-", "speeding up"), "down": ("--", "slowing down")}
 # the panels: variable -> its axis label in words (None: its long_name and units)
+# a point the sweep solved cold because the state continued from its neighbour did not converge
+COLD_RESTART_STYLE = {"marker": "o", "markersize": 9, "markerfacecolor": "none", "linestyle": "none"}
 PANELS = {"contact_resistance": None, "fluid_load_fraction": "fluid share of the load F_fluid/F (\u2013)"}
 # the resistance axis ends this many times above the highest closed contact's resistance: an
 # open circuit's (up to 1e77 ohm on Fig. 8) would flatten the branches into one line
@@ -29,7 +31,8 @@ def hysteresis_figure(curves: Sequence[tuple[str, xr.Dataset]], title: str) -> F
     """Contact resistance (log, up to OPEN_HEADROOM times the highest closed contact's) and
     fluid load fraction against the sliding speed for each (label, Dataset along direction
     and speed) of ``curves``: one colour a curve, solid speeding up, dashed slowing down, a
-    red cross where a point did not converge."""
+    red cross where a point did not converge, a ring where the sweep solved it cold
+    (``cold_restart``: the branch it followed ended there)."""
     fig = Figure(figsize=(12, 5), layout="constrained")
     axes = fig.subplots(1, 2)
     handles = []
@@ -39,9 +42,12 @@ def hysteresis_figure(curves: Sequence[tuple[str, xr.Dataset]], title: str) -> F
         for way, (style, _) in WAYS.items():
             branch = ds.sel(direction=way)
             failed = branch["converged"].values != 1
+            restarted = branch["cold_restart"].values == 1
             for ax, name in zip(axes, PANELS):
                 ax.plot(branch["speed"].values, branch[name].values, linestyle=style, color=colour, marker=".")
                 ax.plot(branch["speed"].values[failed], branch[name].values[failed], **NOT_CONVERGED_STYLE)
+                ax.plot(branch["speed"].values[restarted], branch[name].values[restarted], color=colour,
+                        **COLD_RESTART_STYLE)
     speed = curves[0][1]["speed"]
     for ax, (name, label) in zip(axes, PANELS.items()):
         data = curves[0][1][name]
@@ -57,6 +63,7 @@ def hysteresis_figure(curves: Sequence[tuple[str, xr.Dataset]], title: str) -> F
     axes[1].set_ylim(0.0, 1.0)
     handles += [Line2D([], [], color="black", linestyle=style, label=words) for style, words in WAYS.values()]
     handles.append(Line2D([], [], label="did not converge", **NOT_CONVERGED_STYLE))
+    handles.append(Line2D([], [], color="black", label="solved cold: the branch followed ended", **COLD_RESTART_STYLE))
     axes[1].legend(handles=handles, loc="upper left", fontsize="small")
     fig.suptitle(wrapped(title))
     return fig
