@@ -56,7 +56,7 @@ def figure_rows() -> tuple[list[str], float]:
 
 def mesh_rows() -> list[str]:
     """One row per speed of LOOP_SPEEDS: the fluid load fraction up / down on each of MESHES
-    (a star: that point did not converge)."""
+    (a star: that point did not converge; a dagger: the sweep solved it cold, cold_restart)."""
     columns = []
     for n in MESHES:
         scene = lc.load_scene(TABLE1, {"operating.force": 20.0, "mesh.nx": n, "mesh.ny": n})
@@ -64,7 +64,8 @@ def mesh_rows() -> list[str]:
 
         def cell(way, i):
             point = ds.sel(direction=way).isel(speed=i)
-            return f"{float(point['fluid_load_fraction']):.3f}{'' if int(point['converged']) == 1 else '*'}"
+            marks = ("" if int(point["converged"]) == 1 else "*") + ("†" if int(point["cold_restart"]) == 1 else "")
+            return f"{float(point['fluid_load_fraction']):.3f}{marks}"
 
         columns.append([f"{cell('up', i)} / {cell('down', i)}" for i in range(LOOP_SPEEDS.size)])
         print(f"{n}^2 done", flush=True)
@@ -93,7 +94,8 @@ def main() -> None:
         *rows,
         "",
         "Fluid load fraction at 20 N around the lift-off, speeding up / slowing down, on three meshes "
-        "(a star: that point did not converge):",
+        "(a star: that point did not converge; a dagger: the state continued from the previous speed did not "
+        "converge and the sweep solved the point cold, cold_restart):",
         "",
         "| speed (m/s) | " + " | ".join(f"{n}²" for n in MESHES) + " |",
         "|---|" + "---|" * len(MESHES),

@@ -21,6 +21,7 @@ from lubecontact.model.model import Model
 from lubecontact.model.monolithic_newton import Iterate, converged, linearise
 from lubecontact.plotting.hysteresis import hysteresis_figure
 from lubecontact.studies import figure_grids, hysteresis_cases
+from lubecontact.studies.sweep import largest_difference
 
 TABLE1 = "config/scenes/table1.yaml"
 # Fig. 8's heaviest force on a 31 x 31 mesh (a second a sweep): its lift-off loop spans
@@ -101,6 +102,18 @@ def test_cli_sweep_both_ways_writes_both_and_prints_the_difference(tmp_path, cap
     assert "hysteresis: speeding up and slowing down differ most at" in printed
     with xr.open_dataset(out) as ds:
         assert ds["contact_resistance"].dims == ("direction", "speed")
+
+
+def test_the_largest_difference_takes_open_contacts_and_says_so():
+    def branch(resistance, share):
+        return xr.Dataset({"contact_resistance": ("speed", resistance), "fluid_load_fraction": ("speed", share),
+                           "converged": ("speed", [1, 1, 1])}, coords={"speed": [0.1, 1.0, 10.0]})
+
+    inf = np.inf  # no metallic path at all: both open at 10 m/s (the same), one open at 1 m/s
+    said = largest_difference(branch([1e-8, 1e-6, inf], [0.2, 0.5, 1.0]), branch([1e-8, inf, inf], [0.2, 1.0, 1.0]))
+    assert said.startswith("speeding up and slowing down differ most at 1 m/s: contact resistance 1e-06 ohm up, inf")
+    same = largest_difference(branch([1e-8, 2e-8, inf], [0.2, 0.3, 1.0]), branch([1e-8, 2e-8, inf], [0.2, 0.3, 1.0]))
+    assert "ln R apart by 0" in same
 
 
 def test_sweep_refuses_a_direction_it_does_not_know():

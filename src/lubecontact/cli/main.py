@@ -245,7 +245,8 @@ def _run(args) -> int:
         return EXIT_OK
     from lubecontact.model.resources import elapsed_bar
 
-    out, est = _checked(args, scene, 1 if speeds is None else len(speeds))
+    ways = 2 if getattr(args, "direction", "up") == "both" else 1  # a sweep both ways solves each speed twice
+    out, est = _checked(args, scene, 1 if speeds is None else ways * len(speeds))
     if args.command == "solve":  # no xarray: the case is written with netCDF4 (case_result)
         from lubecontact.model.model import SolveError
         from lubecontact.model.solve import solve_case

@@ -118,14 +118,16 @@ def largest_difference(up: xr.Dataset, down: xr.Dataset) -> str:
     both = (up["converged"].values == 1) & (down["converged"].values == 1)
     if not both.any():
         return "no speed converged in both directions: nothing to compare"
-    gap = np.abs(np.log(up["contact_resistance"].values) - np.log(down["contact_resistance"].values))
+    r_up, r_down = up["contact_resistance"].values, down["contact_resistance"].values
+    with np.errstate(divide="ignore", invalid="ignore"):  # no metallic path: R = inf (or 0 in a test scene)
+        gap = np.abs(np.log(r_up) - np.log(r_down))
+    gap = np.where(r_up == r_down, 0.0, gap)  # the same, infinite ones too
     i = int(np.argmax(np.where(both, gap, -np.inf)))
     speed = float(up["speed"].values[i])
-    r_up, r_down = float(up["contact_resistance"][i]), float(down["contact_resistance"][i])
     f_up, f_down = float(up["fluid_load_fraction"][i]), float(down["fluid_load_fraction"][i])
-    return (f"speeding up and slowing down differ most at {speed:g} m/s: contact resistance {r_up:.4g} ohm up, "
-            f"{r_down:.4g} ohm down (a factor {max(r_up, r_down) / min(r_up, r_down):.3g}); fluid load fraction "
-            f"{f_up:.3g} up, {f_down:.3g} down")
+    return (f"speeding up and slowing down differ most at {speed:g} m/s: contact resistance {r_up[i]:.4g} ohm up, "
+            f"{r_down[i]:.4g} ohm down (ln R apart by {gap[i]:.3g}); fluid load fraction {f_up:.3g} up, "
+            f"{f_down:.3g} down")
 
 
 def repeated_speeds(speeds: Sequence[float]) -> list[float]:
