@@ -223,6 +223,14 @@ CASES = {
     "newton_default_mesh": (False, {"solver.method": "newton", "operating.speed": 0.01},
                             "converges since a Newtonian film's steady line search is non-monotone (it stalled, "
                             "and its load continuation failed after 26 s), 10 iterations, 1.2 s"),
+    # found in the thirty-fourth session (issue 27) at Fig. 8's heaviest force near its lift-off,
+    # where the steady contact has more than one state (docs/physics.md section 23): the one
+    # Newton's load continuation doubles the load from a lighter converged state and stalls
+    # (at 0.158 m/s too, at 0.73 of the force, 16 s); the nested solver converges here
+    # (fluid share 0.29), as do the sweeps through this speed both ways
+    "newton_lift_off_20_N": (False, {"solver.method": "newton", "operating.force": 20.0, "operating.speed": 0.0631},
+                             "51 x 51, one Newton: converged = 0, its load continuation stopped at 0.33 of the force "
+                             "(Newton stalled at a scaled residual of 0.015); 9 s"),
 }
 
 
@@ -319,7 +327,8 @@ def test_hard_case_fails_cheaply_saying_where_and_why(case, outcomes):
         return
     notes = ds.attrs["notes"]
     if not CASES[case][0]:  # a steady case: the force balance says how far it got
-        assert re.search(r"NOT CONVERGED: force balance did not converge \(z = \S+ m, force error \S+ N", notes), notes
+        assert re.search(r"NOT CONVERGED: (force balance did not converge \(z = \S+ m, force error \S+ N"
+                         r"|load continuation stopped at \S+ of the force)", notes), notes  # the nested or the one Newton
         if case == "smooth_default_mesh":  # and what an engineer can do about it
             assert "thinnest at its ends" in notes and "effects.asperity_contact" in notes, notes
         if case == "smooth_crowned_default_mesh":  # not the ends, which the crown lifts
