@@ -75,7 +75,7 @@ def test_a_continued_point_that_fails_is_solved_cold_and_says_so(tmp_path, capsy
     out = tmp_path / "down.nc"
     assert cli.main(["sweep", TABLE1, "--set", "operating.force=20", "--speeds", ",".join(repr(float(u)) for u in speeds),
                      "--direction", "down", "--out", str(out)]) == 0
-    assert f"cold restart at {speeds[0]:g} m/s" in capsys.readouterr().out
+    assert f"cold restart at {speeds[0]:g} m/s:" in capsys.readouterr().out
     ds = xr.load_dataset(out)
     assert ds["converged"].values.tolist() == [1] * 5 and ds["cold_restart"].values.tolist() == [1, 0, 0, 0, 0]
     cold = lc.solve(scene.replace({"operating.speed": float(speeds[0])}))
