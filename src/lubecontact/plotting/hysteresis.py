@@ -18,9 +18,9 @@ from lubecontact.plotting.transient import wrapped
 
 # each direction of a sweep (studies/sweep.DIRECTIONS): its line style and its words in the legend
 WAYS = {"up": ("-", "speeding up"), "down": ("--", "slowing down")}
-# the panels: variable -> its axis label in words (None: its long_name and units)
 # a point the sweep solved cold because the state continued from its neighbour did not converge
 COLD_RESTART_STYLE = {"marker": "o", "markersize": 9, "markerfacecolor": "none", "linestyle": "none"}
+# the panels: variable -> its axis label in words (None: its long_name and units)
 PANELS = {"contact_resistance": None, "fluid_load_fraction": "fluid share of the load F_fluid/F (\u2013)"}
 # the resistance axis ends this many times above the highest closed contact's resistance: an
 # open circuit's (up to 1e77 ohm on Fig. 8) would flatten the branches into one line
@@ -57,7 +57,8 @@ def hysteresis_figure(curves: Sequence[tuple[str, xr.Dataset]], title: str) -> F
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_yscale("log")
     closed = [float(ds["contact_resistance"].where(ds["open_circuit"] != 1).max()) for _, ds in curves]
-    if any(r > 0.0 for r in closed):
+    closed = [r for r in closed if r > 0.0]  # NaN: every point of that curve open
+    if closed and any(int(ds["open_circuit"].max()) == 1 for _, ds in curves):
         axes[0].set_ylim(top=OPEN_HEADROOM * max(closed))
         axes[0].set_title("above: open circuits, off the axis", fontsize="small")
     axes[1].set_ylim(0.0, 1.0)
