@@ -35,7 +35,7 @@ LOOP_SPEEDS = np.geomspace(0.0631, 0.251, 13)  # m/s: around the 20 N lift-off o
 
 def figure_rows() -> tuple[list[str], float]:
     spec = figure_grids.read_yaml(FIG08)
-    speeds = figure_grids.log_speeds(spec["speeds"]["from"], spec["speeds"]["to"], spec["speeds"]["per_decade"])
+    speeds = figure_grids.speeds_of(spec, "fig08")
     rows, start = [], time.process_time()
     for force in spec["sweep"]["operating.force"]:
         scene = lc.load_scene(TABLE1, {"operating.force": force})

@@ -128,7 +128,7 @@ def render(ds: xr.Dataset, plot: Mapping, title: str = "", reference: xr.Dataset
     fig = Figure(figsize=(4.8 * len(panels) + 1.0, 4.2), layout="constrained")
     axes = fig.subplots(1, len(panels), squeeze=False, sharey=True)[0]
     shape = [ds.sizes[d] for d in dims]
-    colours = _colours(int(np.prod(shape)))
+    colours = curve_colours(int(np.prod(shape)))
     marks = {"not converged": False, "open": False, "outside": False}
     flagged: set[str] = set()
     for ax, x_name in zip(axes, panels):
@@ -311,7 +311,8 @@ def _unit_size(plot: Mapping, dim: str, coord: xr.DataArray) -> float:
     return size
 
 
-def _colours(n: int) -> list:
+def curve_colours(n: int) -> list:
+    """One colour for each of ``n`` curves, along viridis (its yellow end left out)."""
     cmap = colormaps["viridis"]
     return [cmap(0.85 * k / max(n - 1, 1)) for k in range(n)]
 

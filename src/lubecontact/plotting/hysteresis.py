@@ -9,11 +9,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import xarray as xr
-from matplotlib import colormaps
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from lubecontact.plotting.figures import NOT_CONVERGED_STYLE, axis_label
+from lubecontact.plotting.figures import NOT_CONVERGED_STYLE, axis_label, curve_colours
 from lubecontact.plotting.transient import wrapped
 
 # each direction of a sweep (studies/sweep.DIRECTIONS): its line style and its words in the legend
@@ -36,8 +35,7 @@ def hysteresis_figure(curves: Sequence[tuple[str, xr.Dataset]], title: str) -> F
     fig = Figure(figsize=(12, 5), layout="constrained")
     axes = fig.subplots(1, 2)
     handles = []
-    for k, (label, ds) in enumerate(curves):
-        colour = colormaps["viridis"](0.85 * k / max(len(curves) - 1, 1))
+    for colour, (label, ds) in zip(curve_colours(len(curves)), curves):
         handles.append(Line2D([], [], color=colour, label=label))
         for way, (style, _) in WAYS.items():
             branch = ds.sel(direction=way)
