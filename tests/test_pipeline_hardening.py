@@ -107,6 +107,27 @@ def test_job_log_keeps_the_traceback_and_restores_the_streams(tmp_path):
     assert text.startswith("working\n") and "Traceback" in text and "ZeroDivisionError" in text
 
 
+def test_an_interrupted_job_says_where_in_its_log_and_one_line_on_the_terminal(tmp_path, capsys):
+    """Ctrl-C reaches every job Snakemake runs: each used to print its KeyboardInterrupt
+    traceback on the terminal. Now the log says where the job stopped, the terminal gets one
+    line, and the job still exits non-zero (130, as a shell reports SIGINT)."""
+    log = tmp_path / "job.log"
+
+    def solving():
+        raise KeyboardInterrupt
+
+    with pytest.raises(SystemExit) as stopped:
+        with joblog.job_log(log):
+            print("case 1: converged")
+            solving()
+    assert stopped.value.code == 130
+    text = log.read_text()
+    assert text.startswith("case 1: converged\n") and "interrupted (Ctrl-C or SIGINT) in solving" in text
+    assert "Traceback" not in text
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and err.count("\n") == 1 and str(log) in err
+
+
 def test_plan_file_is_rewritten_only_when_it_changes(tmp_path):
     path = tmp_path / "plans" / "solve" / "x.json"
     plans.write_plan(path, [{"id": "a", "set": {"k": 1.0}}])
