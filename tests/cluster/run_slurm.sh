@@ -172,9 +172,14 @@ read -r full_planned full_solve_jobs <<<"$counts"
 slurm_log "default study (all figures): $full_planned sbatch submissions for $full_solve_jobs solve jobs (dry run)"
 
 # ---------------------------------------------------------------- faults
-# Both in the cluster run's copy (warm caches), from an empty results directory, solve jobs only
-# (--omit-from collect), one chunk per submission so that the other chunks finish.
-FAULT_ARGS=("${SLURM_ARGS[@]}" --group-components "$GROUP=1" --omit-from collect)
+# Both in the cluster run's copy (warm caches), from an empty results directory, one chunk per
+# submission so that the other chunks finish. Their targets are the study's solve rules (named
+# by the dry run above), which write the case files: not the transient, hysteresis and accuracy
+# jobs, which would double each fault run's time and are checked by the SLURM run above.
+mapfile -t SOLVE_RULES < <(grep -oP "^\s*rule \K${GROUP}_\w+(?=:)" "$WORK/cluster-plan.log" | sort -u)
+[ "${#SOLVE_RULES[@]}" = "$solve_jobs" ] \
+    || slurm_die "the dry run names ${#SOLVE_RULES[@]} solve rules for $solve_jobs solve jobs (see $WORK/cluster-plan.log)"
+FAULT_ARGS=("${SOLVE_RULES[@]}" "${SLURM_ARGS[@]}" --group-components "$GROUP=1")  # targets first: the options take lists
 FAULT_DIR=$WORK/cluster
 
 start_fault_run() {  # log name; sets SMK_PID and RUN_MARK; the partition is down (running_solve_job)
@@ -264,6 +269,7 @@ left_cases() {  # $1 = name; sets PRESENT MISSING LEFTOVERS, checks every left c
 if [ "${LUBECONTACT_CLUSTER_FAULT:-1}" = 1 ]; then
     # A: scancel a solve job as soon as it runs; Snakemake stays up, sees it CANCELLED,
     # removes that job's outputs and finishes the other chunks (keep-going).
+    t0=$(now)
     start_fault_run fault-a
     victim=$(running_solve_job) || fail_with_log "fault A: no solve job was seen running" "$WORK/fault-a.log"
     scancel "$victim"
@@ -277,11 +283,12 @@ if [ "${LUBECONTACT_CLUSTER_FAULT:-1}" = 1 ]; then
     rerun_after_fault fault-a
     [ "$RERUN_SUBMISSIONS" -lt "$submitted" ] \
         || slurm_die "fault A: the rerun resubmitted all $submitted solve jobs, not only the cancelled one"
-    slurm_log "fault A (scancel job $victim mid-run): $PRESENT cases kept, all complete, $MISSING missing; rerun: $RERUN_SUBMISSIONS of $submitted submissions, kept cases untouched, all $RERUN_PRESENT cases equal the local run's"
+    slurm_log "fault A (scancel job $victim mid-run): $PRESENT cases kept, all complete, $MISSING missing; rerun: $RERUN_SUBMISSIONS of $submitted submissions, kept cases untouched, all $RERUN_PRESENT cases equal the local run's; $(elapsed "$t0") s"
 
     # B: the node dies: SIGKILL to Snakemake and to every job of the run, nobody cleans up.
     # Atomic case files must leave only complete cases (temp files are hidden names), and
     # the rerun (rerun-incomplete) must solve only the missing cases of each chunk.
+    t0=$(now)
     start_fault_run fault-b
     victim=$(running_solve_job) || fail_with_log "fault B: no solve job was seen running" "$WORK/fault-b.log"
     wait_first_case "$victim"
@@ -298,7 +305,7 @@ if [ "${LUBECONTACT_CLUSTER_FAULT:-1}" = 1 ]; then
     smk "$FAULT_DIR" "$WORK/fault-b-unlock.log" "${FAULT_ARGS[@]}" --unlock \
         || fail_with_log "fault B: snakemake --unlock failed" "$WORK/fault-b-unlock.log"
     rerun_after_fault fault-b
-    slurm_log "fault B (SIGKILL to Snakemake and jobs $joblist): $PRESENT cases left, all complete, $MISSING missing, $LEFTOVERS temp files; rerun: $RERUN_SUBMISSIONS submissions, kept cases untouched, all $RERUN_PRESENT cases equal the local run's"
+    slurm_log "fault B (SIGKILL to Snakemake and jobs $joblist): $PRESENT cases left, all complete, $MISSING missing, $LEFTOVERS temp files; rerun: $RERUN_SUBMISSIONS submissions, kept cases untouched, all $RERUN_PRESENT cases equal the local run's; $(elapsed "$t0") s"
 fi
 
 echo "run_slurm: OK: tiny study on SLURM in ${CLUSTER_WALL} s wall with ${CLUSTER_SUBMISSIONS} sbatch submissions ($solve_jobs solve jobs); default study: $full_planned submissions ($full_solve_jobs solve jobs); whole check $(elapsed "$T_START") s"
