@@ -54,7 +54,8 @@ class WarmStart:
 class Diagnostics:
     """How a coupled solve ended: outer iterations, the last deformation change (m), force
     residual (N), Reynolds residual (relative), whether every test was met, the force
-    stiffness dF/dz (N/m) and the failure message ("" when none)."""
+    stiffness dF/dz (N/m), the failure message ("" when none) and the continuation that
+    reached the point ("" when the solve started there: monolithic_newton.solve_level)."""
 
     iterations: int
     deformation_residual: float
@@ -63,6 +64,7 @@ class Diagnostics:
     converged: bool
     stiffness: float | None
     failure: str
+    path: str = ""
 
 
 def deformation_stepper(model: Model):

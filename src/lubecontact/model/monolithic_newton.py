@@ -33,7 +33,8 @@ kept short of closing the film (h > 0 at every node: the smooth film has no cont
 A cold start begins from the physics (cold_start); with asperity contact it first solves
 the same problem on the mesh with every other node (down to NESTED_COARSEST nodes a side)
 and starts from its interpolated solution; where Newton still fails from the start, the
-load is approached by continuation from a fraction of it.
+load is approached by continuation from a fraction of it, and where that stalls (near
+lift-off) the speed from a fraction of it (continuation_paths).
 
 Stopping tests, in physical units and all met together (``solver.tolerance`` = tol):
 |F_fluid + F_contact - F| <= tol F, max |R_delta| <= tol max(range of delta, h_s) (in a
@@ -121,8 +122,8 @@ STALL_FACTOR = 0.5
 # Nested start: the coarsest mesh solved first (nodes a side); only with asperity contact,
 # as the nested solver (model/coupling.py): a coarse mesh may not resolve a smooth film.
 NESTED_COARSEST = 26
-# Load continuation from a cold start that fails: the first fraction of the load, then
-# doubled back to the full load.
+# Continuation from a cold start that fails: the first fraction of the load (or speed), then
+# doubled back to the whole of it; at most this many halvings, of the start and of each step.
 CONTINUATION_HALVINGS = 6
 # A smooth film thinner than an atom (0.1 nm) has closed: a nested solve that stops there
 # leaves no state to start from, and finished_by_newton starts cold, with load continuation.
@@ -699,16 +700,37 @@ def at_force(model: Model, force: float) -> Model:
         scene, operating=dataclasses.replace(scene.operating, force=float(force))))
 
 
-def continued(model: Model, fraction: float, lin: Linearisation, tolerance: float):
-    """From ``lin``, converged under ``fraction`` of the force, up to the whole force in
-    steps that double the load, each step halved (up to CONTINUATION_HALVINGS times) where
-    Newton fails on it: (linearisation, iterations, stiffness, failure)."""
-    force, limit = model.scene.operating.force, model.scene.solver.max_iterations
+def at_speed(model: Model, speed: float) -> Model:
+    """The same model, on the same mesh, sliding at another speed (the far inlet rebuilt for it)."""
+    return Model.assemble(model.scene.replace({"operating.speed": float(speed)}), model.mesh, model.contact)
+
+
+@dataclass(frozen=True)
+class Continuation:
+    """A path to the scene's own point through the same model at a multiple of one of its
+    inputs: ``variant(model, fraction)`` is the model at that fraction of it, ``word`` names
+    it in a failure ("load continuation stopped at 0.33 of the force")."""
+
+    word: str
+    quantity: str
+    variant: object  # (Model, fraction) -> Model
+
+
+LOAD = Continuation("load", "force", lambda model, fraction: at_force(model, model.scene.operating.force * fraction))
+SPEED = Continuation("speed", "speed", lambda model, fraction: at_speed(model, model.scene.operating.speed * fraction))
+
+
+def continued(model: Model, fraction: float, lin: Linearisation, tolerance: float, path: Continuation = LOAD):
+    """From ``lin``, converged at ``fraction`` of the input ``path`` varies, to the model's own
+    point in steps that double (from below) or halve (from above) it, each step halved (up to
+    CONTINUATION_HALVINGS times) where Newton fails on it: (linearisation, iterations,
+    stiffness, failure)."""
+    limit = model.scene.solver.max_iterations
     total, stiffness, failure = 0, None, ""
-    while fraction < 1.0:
-        target = min(1.0, 2.0 * fraction)
+    while fraction != 1.0:
+        target = min(1.0, 2.0 * fraction) if fraction < 1.0 else max(1.0, 0.5 * fraction)
         for _ in range(CONTINUATION_HALVINGS + 1):
-            step_model = model if target == 1.0 else at_force(model, force * target)
+            step_model = model if target == 1.0 else path.variant(model, target)
             it = Iterate(lin.state.fluid_pressure, lin.state.delta, lin.state.z)
             trial, iterations, stiffness, failure = newton(step_model, it, tolerance, limit)
             total += iterations
@@ -717,37 +739,59 @@ def continued(model: Model, fraction: float, lin: Linearisation, tolerance: floa
                 break
             target = 0.5 * (fraction + target)
         if failure:
-            return trial, total, stiffness, f"load continuation stopped at {fraction:.3g} of the force: {failure}"
+            return trial, total, stiffness, (f"{path.word} continuation stopped at {fraction:.3g} of the "
+                                             f"{path.quantity}: {failure}")
     return lin, total, stiffness, ""
 
 
+def continuation_paths(model: Model) -> list[tuple[Continuation, list[float]]]:
+    """The paths a failed Newton tries in turn, each with the fractions its cold starts try:
+    the load from 1/2, 1/4, ... of it; then, for a sliding rough contact, the speed from
+    1/2, 1/4, ... of it (the asperities carry the slower contact). Near lift-off the load
+    path crosses a touch-down (docs/physics.md section 23) and stalls: on Table 1 at 20 N and
+    0.0631 m/s (51 x 51) at 0.33 of the force, after 8.7 s, where the speed path from half
+    the speed then converges in 0.7 s (thirty-fifth session). Not from above: cold starts at
+    2 to 64 times 0.158 m/s on the same mesh all failed, 39 s in all."""
+    fractions = [2.0**-k for k in range(1, CONTINUATION_HALVINGS + 1)]
+    paths = [(LOAD, fractions)]
+    if model.hydrodynamic and model.contact is not None:
+        paths.append((SPEED, fractions))
+    return paths
+
+
 def solve_level(model: Model, start: Iterate, tolerance: float, continuation: bool = True):
-    """Newton from ``start``, then, where it fails and ``continuation`` allows, load
-    continuation from the largest of 1/2, 1/4, ... of the force at which a cold start
-    converges: (linearisation, iterations, stiffness, failure)."""
+    """Newton from ``start``, then, where it fails and ``continuation`` allows, each path of
+    continuation_paths in turn from the first of its fractions at which a cold start
+    converges: (linearisation, iterations, stiffness, failure, path), the failure naming where
+    each path stopped, ``path`` the continuation that reached the point ("" where none did)."""
     limit = model.scene.solver.max_iterations
     result = newton(model, start, tolerance, limit)
     if not result[3] or not continuation:
-        return result
-    force = model.scene.operating.force
-    for halvings in range(1, CONTINUATION_HALVINGS + 1):
-        fraction = 2.0**-halvings
-        lighter = at_force(model, force * fraction)
-        lin, iterations, _, failure = newton(lighter, cold_start(lighter), tolerance, limit)
-        if not failure:
-            lin, more, stiffness, failure = continued(model, fraction, lin, tolerance)
-            return lin, iterations + more, stiffness, failure
-    return result
+        return (*result, "")
+    failures, total = [], result[1]
+    for path, fractions in continuation_paths(model):
+        for fraction in fractions:
+            other = path.variant(model, fraction)
+            lin, iterations, _, failure = newton(other, cold_start(other), tolerance, limit)
+            total += iterations
+            if not failure:
+                lin, more, stiffness, failure = continued(model, fraction, lin, tolerance, path)
+                total += more
+                if not failure:
+                    return lin, total, stiffness, "", f"{path.word} continuation from {fraction:g} of the {path.quantity}"
+                failures.append(failure)
+                break
+    return (*result[:3], "; ".join([result[3], *failures]), "")
 
 
 def level_solution(model: Model, initial: WarmStart | None, tolerance: float, continuation: bool = True):
-    """(linearisation, iterations, stiffness, failure) on this mesh, started from a warm
+    """(linearisation, iterations, stiffness, failure, path: solve_level) on this mesh, started from a warm
     start on it, else from the solution on the coarser mesh (nested), else cold."""
     start = warm_iterate(model, initial)
     if start is None:
         coarse = model.coarsened(NESTED_COARSEST) if model.contact is not None else None
         if coarse is not None:
-            lin, _, _, failure = level_solution(coarse, None, tolerance)
+            lin, _, _, failure, _ = level_solution(coarse, None, tolerance)
             if lin is not None and not failure:
                 state = lin.state
                 start = transferred(coarse, model, Iterate(state.fluid_pressure, state.delta, state.z))
@@ -760,11 +804,11 @@ def monolithic_solve(model: Model, initial: WarmStart | None = None, tolerance: 
                      continuation: bool = True) -> tuple[State, Diagnostics]:
     """Solve the coupled steady contact by one semismooth Newton (module docstring); the
     same (State, Diagnostics) as model/coupling.coupled_solve. ``continuation``: whether a
-    failed Newton may go on by load continuation. A failure is reported, never silent:
+    failed Newton may go on by continuation (load, then speed: continuation_paths). A failure is reported, never silent:
     ``converged`` False with the message, and the last state evaluated."""
     scene = model.scene
     tol = scene.solver.tolerance if tolerance is None else tolerance
-    lin, iterations, stiffness, failure = level_solution(model, initial, tol, continuation)
+    lin, iterations, stiffness, failure, path = level_solution(model, initial, tol, continuation)
     if lin is None:
         raise SolveError(failure)
     state = lin.state
@@ -776,7 +820,17 @@ def monolithic_solve(model: Model, initial: WarmStart | None = None, tolerance: 
         converged=not failure,
         stiffness=None if stiffness is None else -stiffness,
         failure=failure,
+        path=path,
     )
+
+
+def path_notes(diagnostics: Diagnostics) -> list[str]:
+    """The note of a solve that reached its point by continuation (Diagnostics.path), else
+    none: where the contact has more than one steady state the path decides which."""
+    if not diagnostics.path:
+        return []
+    return [f"one Newton reached this point by {diagnostics.path} (its own cold start did not converge); where "
+            "the contact has more than one steady state the path decides which it finds (docs/physics.md section 23)"]
 
 
 def finishes(model: Model) -> bool:
@@ -810,9 +864,9 @@ def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
             continue
         if newton_diagnostics.converged:
             stopped = f"after {diagnostics.iterations} iterations ({why})" if diagnostics.failure else f"after {why}"
-            return finished, newton_diagnostics, (
+            return finished, newton_diagnostics, "; ".join([
                 f"the nested solver stopped {stopped}; one Newton {how} converged in {newton_diagnostics.iterations} "
-                "(solver.method newton, docs/physics.md section 20)")
+                "(solver.method newton, docs/physics.md section 20)", *path_notes(newton_diagnostics)])
         newton_failures.append(f"one Newton {how}: {newton_diagnostics.failure}")
     return state, dataclasses.replace(diagnostics, failure="; then ".join([why, *newton_failures])), ""
 
@@ -835,7 +889,8 @@ def steady_solve(model: Model, initial: WarmStart | None = None) -> tuple[State,
     (finished_by_newton); the notes say which, where it is not the scene's default."""
     if needs_newton(model):
         notes = [] if model.scene.solver.method == "newton" else [GREASE_BY_NEWTON.format(model.scene.lubricant.rheology)]
-        return *monolithic_solve(model, initial), notes
+        state, diagnostics = monolithic_solve(model, initial)
+        return state, diagnostics, notes + path_notes(diagnostics)
     try:
         nested = coupled_solve(model, initial)
     except SolveError as err:  # raised before it had a state to report
@@ -846,7 +901,7 @@ def steady_solve(model: Model, initial: WarmStart | None = None) -> tuple[State,
 
 def newton_after_nested_raised(model: Model, initial: WarmStart | None, error: SolveError):
     """(state, diagnostics, notes) where the nested solve raised before its first state: one
-    Newton from the same start, with load continuation, the note saying so; SolveError naming
+    Newton from the same start, with continuation, the note saying so; SolveError naming
     both failures where it raises too (or cannot take the scene, finishes). Seen on a smooth
     line contact whose spacing leaves the Hertz width ten cells (Table 1 without asperity
     contact at 0.01 m/s, 51 nodes on 0.5 mm): the nested solve starts rigid, and the rigid
@@ -858,5 +913,6 @@ def newton_after_nested_raised(model: Model, initial: WarmStart | None, error: S
         state, diag = monolithic_solve(model, initial)
     except SolveError as newton_error:
         raise SolveError(f"the nested solver: {error}; then one Newton: {newton_error}") from newton_error
-    return state, diag, [f"the nested solver stopped at its first force balance ({error}); one Newton with load "
-                         f"continuation took the solve (solver.method newton, docs/physics.md section 20)"]
+    return state, diag, [f"the nested solver stopped at its first force balance ({error}); one Newton with "
+                         f"continuation took the solve (solver.method newton, docs/physics.md section 20)",
+                         *path_notes(diag)]
