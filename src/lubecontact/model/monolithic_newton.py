@@ -721,14 +721,13 @@ SPEED = Continuation("speed", "speed", lambda model, fraction: at_speed(model, m
 
 
 def continued(model: Model, fraction: float, lin: Linearisation, tolerance: float, path: Continuation = LOAD):
-    """From ``lin``, converged at ``fraction`` of the input ``path`` varies, to the model's own
-    point in steps that double (from below) or halve (from above) it, each step halved (up to
-    CONTINUATION_HALVINGS times) where Newton fails on it: (linearisation, iterations,
-    stiffness, failure)."""
+    """From ``lin``, converged at ``fraction`` (< 1) of the input ``path`` varies, to the
+    model's own point in steps that double it, each step halved (up to CONTINUATION_HALVINGS
+    times) where Newton fails on it: (linearisation, iterations, stiffness, failure)."""
     limit = model.scene.solver.max_iterations
     total, stiffness, failure = 0, None, ""
-    while fraction != 1.0:
-        target = min(1.0, 2.0 * fraction) if fraction < 1.0 else max(1.0, 0.5 * fraction)
+    while fraction < 1.0:
+        target = min(1.0, 2.0 * fraction)
         for _ in range(CONTINUATION_HALVINGS + 1):
             step_model = model if target == 1.0 else path.variant(model, target)
             it = Iterate(lin.state.fluid_pressure, lin.state.delta, lin.state.z)
