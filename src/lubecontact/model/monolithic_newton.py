@@ -99,9 +99,14 @@ GMRES_CYCLES = 10
 # GMRES is preconditioned by the same reduced system with K cut to its near field, the
 # influence coefficients between nodes at most this many nodes apart along each axis
 # (NearFieldPreconditioner). Measured on Table 1 time steps at 51 x 51 (bench/EXPERIMENTS.md,
-# thirteenth session): 2-3 GMRES iterations a Newton step, where the unpreconditioned
-# GMRES did not reach 0.1 in 300.
-NEAR_FIELD_RADIUS = 2
+# thirteenth session): 2-3 GMRES iterations a Newton step at a radius of 2, where the
+# unpreconditioned GMRES did not reach 0.1 in 300. A radius of 1 (9 coefficients a node
+# instead of 25) fills the factors far less: cold steady solves of Table 1 on 51 x 51 took
+# 0.26 / 0.43 / 0.77 s at 0.01 / 1 / 10 m/s against 0.35 / 0.59 / 0.99 s (radius 0: 0.26 /
+# 0.38 / 0.71 s, with 14 Newton iterations instead of 10 at 0.01 m/s), and the 20 N grease
+# stop on 51 x 51 (tests/test_hard_cases.py, its steps one Newton each) 92 s against 88 s
+# (thirty-fifth session).
+NEAR_FIELD_RADIUS = 1
 # Smoothing of the Fischer-Burmeister function relative to the scaled residual: nodes in a
 # sealed pocket have p = 0 and outflow 0 together, where phi is not differentiable and the
 # generalised Newton step can fail to descend (seen on Table 1 at 1 mm/s: 506 such nodes).
@@ -324,7 +329,7 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
     area = lin.load_weight  # dF/dp: the nodal areas (with the far inlet's weight)
     force = model.scene.operating.force
     weight = lin.film_scale / force
-    lu = splu(lin.j_pp) if lin.j_pp is not None and lin.j_pp.shape[0] else None
+    lu = splu(lin.j_pp, permc_spec="MMD_AT_PLUS_A") if lin.j_pp is not None and lin.j_pp.shape[0] else None
 
     def pressure_response(dh):
         """Change of the fluid pressure (ny, nx) for a film change dh (ny, nx), R_p held."""
@@ -425,7 +430,7 @@ class NearFieldPreconditioner:
         j_ph = sp.csr_matrix(lin.j_ph)
         block = sp.bmat([[lin.j_pp, j_ph], [-(near @ embed), sp.identity(n) - near @ sp.diags(slope)]], format="csc")
         units = np.concatenate([np.full(m, lin.pressure_scale), np.full(n, lin.film_scale)])
-        lu = splu(sp.csc_matrix(sp.diags(1.0 / units) @ block @ sp.diags(units)))
+        lu = splu(sp.csc_matrix(sp.diags(1.0 / units) @ block @ sp.diags(units)), permc_spec="MMD_AT_PLUS_A")
         preconditioner = cls(lu, units, m, np.zeros(m + n), np.zeros(m + n), 1.0)
         column = preconditioner.block_solve(np.concatenate([j_ph @ np.ones(n), -(near @ slope)]))
         row = weight * np.concatenate([embed.T @ area, area * slope + film_slope])
@@ -665,18 +670,29 @@ def cold_start(model: Model) -> Iterate:
         z = film - float(np.min(model.undeformed_gap + delta))
     pressure = np.zeros(mesh.shape)
     if model.hydrodynamic:
-        h = model.undeformed_gap + z + delta
-        h_t, k = fluid_film(model, h)
-        faces, _ = fluid_faces(model, h)
-        pressure = solve_reynolds(mesh, h_t, k, scene.operating.speed, faces=faces, exterior=fluid_exterior(model, h),
-                                  cavitation=scene.effects.cavitation != "none").pressure
+        pressure = reynolds_pressure(model, model.undeformed_gap + z + delta)
     return Iterate(pressure, delta, z)
 
 
+def reynolds_pressure(model: Model, film: np.ndarray) -> np.ndarray:
+    """The Reynolds pressure (Pa, (ny, nx)) of ``film`` (numerics/reynolds.solve_reynolds)."""
+    h_t, k = fluid_film(model, film)
+    faces, _ = fluid_faces(model, film)
+    return solve_reynolds(model.mesh, h_t, k, model.scene.operating.speed, faces=faces,
+                          exterior=fluid_exterior(model, film), cavitation=model.scene.effects.cavitation != "none").pressure
+
+
 def transferred(coarse: Model, fine: Model, it: Iterate) -> Iterate:
-    """A coarse-mesh iterate interpolated to the fine mesh (bilinear; pressure kept >= 0)."""
+    """A coarse-mesh iterate interpolated to the fine mesh (bilinear; pressure kept >= 0);
+    a Newtonian film's pressure then solved again on the fine mesh's film (reynolds_pressure):
+    the interpolated one left a Reynolds residual of 0.11 of the peak pressure on Table 1 at
+    1 m/s, and its fine Newton took 9 iterations instead of 7 (thirty-fifth session). A
+    grease's keeps the interpolated one (its pressure is not the Newtonian Reynolds one)."""
+    delta = interpolate_field(it.delta, coarse.mesh, fine.mesh)
     pressure = np.maximum(interpolate_field(it.pressure, coarse.mesh, fine.mesh), 0.0)
-    return Iterate(pressure, interpolate_field(it.delta, coarse.mesh, fine.mesh), it.z)
+    if fine.hydrodynamic and yield_stress_law(fine) is None:
+        pressure = reynolds_pressure(fine, fine.undeformed_gap + it.z + delta)
+    return Iterate(pressure, delta, it.z)
 
 
 def warm_iterate(model: Model, initial: WarmStart) -> Iterate | None:
