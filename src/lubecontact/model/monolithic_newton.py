@@ -102,10 +102,10 @@ GMRES_CYCLES = 10
 # thirteenth session): 2-3 GMRES iterations a Newton step at a radius of 2, where the
 # unpreconditioned GMRES did not reach 0.1 in 300. A radius of 1 (9 coefficients a node
 # instead of 25) fills the factors far less: cold steady solves of Table 1 on 51 x 51 took
-# 0.26 / 0.43 / 0.77 s at 0.01 / 1 / 10 m/s against 0.35 / 0.59 / 0.99 s (radius 0: 0.26 /
-# 0.38 / 0.71 s, with 14 Newton iterations instead of 10 at 0.01 m/s), and the 20 N grease
-# stop on 51 x 51 (tests/test_hard_cases.py, its steps one Newton each) 92 s against 88 s
-# (thirty-fifth session).
+# 0.26 / 0.43 / 0.77 s of CPU at 0.01 / 1 / 10 m/s against 0.35 / 0.59 / 0.99 s (single
+# solves; radius 0: 0.26 / 0.38 / 0.71 s, with 14 Newton iterations instead of 10 at
+# 0.01 m/s), and the 20 N grease stop on 51 x 51 (tests/test_hard_cases.py, its steps one
+# Newton each) 92 s against 88 s (thirty-fifth session).
 NEAR_FIELD_RADIUS = 1
 # Smoothing of the Fischer-Burmeister function relative to the scaled residual: nodes in a
 # sealed pocket have p = 0 and outflow 0 together, where phi is not differentiable and the
