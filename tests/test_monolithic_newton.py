@@ -128,6 +128,9 @@ def test_a_newton_that_cannot_converge_says_where_and_keeps_its_state():
     assert int(ds.converged) == 0
     assert "NOT CONVERGED" in ds.attrs["notes"] and "Newton" in ds.attrs["notes"]
     assert np.isfinite(float(ds.contact_resistance))
+    # each continuation it tried is named, with how far it got: here no cold start of either
+    assert "; load continuation: no cold start converged at 0.5 to 0.015625 of the force" in ds.attrs["notes"]
+    assert "; speed continuation: no cold start converged at 0.5 to 0.015625 of the speed" in ds.attrs["notes"]
 
 
 def test_newton_is_refused_where_it_does_not_reach_yet():

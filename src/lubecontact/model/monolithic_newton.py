@@ -764,9 +764,10 @@ def continuation_paths(model: Model) -> list[tuple[Continuation, list[float]]]:
     the load from 1/2, 1/4, ... of it; then, for a sliding rough contact, the speed from
     1/2, 1/4, ... of it (the asperities carry the slower contact). Near lift-off the load
     path crosses a touch-down (docs/physics.md section 23) and stalls: on Table 1 at 20 N and
-    0.0631 m/s (51 x 51) at 0.33 of the force, after 8.7 s, where the speed path from half
-    the speed then converges in 0.7 s (thirty-fifth session). Not from above: cold starts at
-    2 to 64 times 0.158 m/s on the same mesh all failed, 39 s in all."""
+    0.1 m/s (51 x 51), after the cold start and the load path stall, the speed path from half
+    the speed converges, 9 s in all (tests/test_hard_cases.py, thirty-fifth session). Not
+    from above: cold starts at 2 to 64 times 0.158 m/s on the same mesh all failed, 39 s in
+    all."""
     fractions = [2.0**-k for k in range(1, CONTINUATION_HALVINGS + 1)]
     paths = [(LOAD, fractions)]
     if model.hydrodynamic and model.contact is not None:
@@ -796,6 +797,9 @@ def solve_level(model: Model, start: Iterate, tolerance: float, continuation: bo
                     return lin, total, stiffness, "", f"{path.word} continuation from {fraction:g} of the {path.quantity}"
                 failures.append(failure)
                 break
+        else:
+            failures.append(f"{path.word} continuation: no cold start converged at {fractions[0]:g} to "
+                            f"{fractions[-1]:g} of the {path.quantity}")
     return (*result[:3], "; ".join([result[3], *failures]), "")
 
 
