@@ -107,6 +107,15 @@ def test_job_log_keeps_the_traceback_and_restores_the_streams(tmp_path):
     assert text.startswith("working\n") and "Traceback" in text and "ZeroDivisionError" in text
 
 
+def test_a_job_log_shows_each_line_as_soon_as_it_is_printed(tmp_path):
+    log = tmp_path / "job.log"
+    with joblog.job_log(log):
+        print("case 1: converged")
+        assert log.read_text() == "case 1: converged\n"  # while the job still runs (tail -f)
+        print("case 2: ", end="")
+        assert log.read_text() == "case 1: converged\n"
+
+
 def test_an_interrupted_job_says_where_in_its_log_and_one_line_on_the_terminal(tmp_path, capsys):
     """Ctrl-C reaches every job Snakemake runs: each used to print its KeyboardInterrupt
     traceback on the terminal. Now the log says where the job stopped, the terminal gets one
