@@ -4,7 +4,9 @@ rewritten only on change (lubecontact.io.job_plans). End to end: test_workflow.p
 
 import os
 import re
+import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -12,6 +14,7 @@ from lubecontact.io import case_files as casefiles
 from lubecontact.io import job_log as joblog
 from lubecontact.io import job_plans as plans
 from lubecontact.io.case_schema import write_case
+from lubecontact.model.auto_effects import decreasing_root
 from lubecontact.model.solve import solve
 from lubecontact.scene.scene import load_scene
 
@@ -122,8 +125,11 @@ def test_an_interrupted_job_says_where_in_its_log_and_one_line_on_the_terminal(t
     line, and the job still exits non-zero (130, as a shell reports SIGINT)."""
     log = tmp_path / "job.log"
 
-    def solving():
+    def force_at(z):
         raise KeyboardInterrupt
+
+    def solving():  # interrupted inside the package's code (in a callback of it, as numpy's would be)
+        decreasing_root(force_at, 0.0, 1.0, 1e-9)
 
     with pytest.raises(SystemExit) as stopped:
         with joblog.job_log(log):
@@ -131,10 +137,23 @@ def test_an_interrupted_job_says_where_in_its_log_and_one_line_on_the_terminal(t
             solving()
     assert stopped.value.code == 130
     text = log.read_text()
-    assert text.startswith("case 1: converged\n") and "interrupted (Ctrl-C or SIGINT) in solving" in text
+    assert text.startswith("case 1: converged\n") and "interrupted (Ctrl-C or SIGINT) in decreasing_root" in text
     assert "Traceback" not in text
     err = capsys.readouterr().err
     assert "Traceback" not in err and err.count("\n") == 1 and str(log) in err
+
+
+def test_a_rule_script_interrupted_while_it_imports_exits_with_one_line(tmp_path):
+    """Ctrl-C can reach a job before its log is open (its imports take a second or more):
+    workflow/scripts/this_tree.py, which every rule script imports first, ends it with one
+    line and status 130 instead of an import traceback."""
+    script = tmp_path / "plot.py"
+    script.write_text("import os, signal, time\nimport this_tree\nos.kill(os.getpid(), signal.SIGINT)\ntime.sleep(5)\n")
+    scripts = Path(__file__).resolve().parents[1] / "workflow" / "scripts"
+    run = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=60,
+                         env={**os.environ, "PYTHONPATH": str(scripts)})
+    assert run.returncode == 130, run.stderr
+    assert run.stderr == "lubecontact job plot.py interrupted (Ctrl-C or SIGINT) while starting\n"
 
 
 def test_plan_file_is_rewritten_only_when_it_changes(tmp_path):

@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 import contextlib
+import os
+import signal
 import sys
 import traceback
+from pathlib import Path
 
 # The exit status of a process stopped by SIGINT (128 + 2), as a shell reports it.
 INTERRUPTED_STATUS = 130
+PACKAGE = str(Path(__file__).resolve().parents[1])  # src/lubecontact: where an interruption is said to be
 
 
 @contextlib.contextmanager
@@ -23,6 +27,10 @@ def job_log(path):
     are written atomically and kept by update())."""
     saved = sys.stdout, sys.stderr
     interrupted = ""
+    if signal.getsignal(signal.SIGINT) not in (signal.SIG_IGN, signal.SIG_DFL):
+        # Python's own handler again (a rule script replaces it while it imports, to exit
+        # quietly: workflow/scripts/this_tree.py), so that an interruption is caught below
+        signal.signal(signal.SIGINT, signal.default_int_handler)
     # line-buffered: each line is in the file as soon as it is printed, so that a long job's
     # progress (a chunk's "case ...: converged" lines) can be followed with tail -f; block
     # buffering kept a chunk of 201 x 201 cases silent for minutes (thirty-fifth session)
@@ -31,7 +39,11 @@ def job_log(path):
         try:
             yield log
         except KeyboardInterrupt:
-            where = traceback.extract_tb(sys.exc_info()[2])[-1]
+            frames = traceback.extract_tb(sys.exc_info()[2])
+            # the innermost frame of this package's code or of a rule script, not numpy's
+            ours = [f for f in frames if f.filename != __file__ and (f.filename.startswith(PACKAGE)
+                                                                     or f"{os.sep}scripts{os.sep}" in f.filename)]
+            where = (ours or frames)[-1]
             interrupted = f"interrupted (Ctrl-C or SIGINT) in {where.name}, {where.filename}:{where.lineno}"
             print(f"job {interrupted}; what it wrote before is kept", file=log)
         except BaseException:
