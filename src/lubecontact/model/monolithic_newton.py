@@ -46,6 +46,7 @@ has stalled: a tenth of motion.tolerance p_s, Model.squeeze.settled_pressure).
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -729,14 +730,14 @@ class Continuation:
 
     word: str
     quantity: str
-    variant: object  # (Model, fraction) -> Model
+    variant: Callable[[Model, float], Model]
 
 
 LOAD = Continuation("load", "force", lambda model, fraction: at_force(model, model.scene.operating.force * fraction))
 SPEED = Continuation("speed", "speed", lambda model, fraction: at_speed(model, model.scene.operating.speed * fraction))
 
 
-def continued(model: Model, fraction: float, lin: Linearisation, tolerance: float, path: Continuation = LOAD):
+def continued(model: Model, fraction: float, lin: Linearisation, path: Continuation, tolerance: float):
     """From ``lin``, converged at ``fraction`` (< 1) of the input ``path`` varies, to the
     model's own point in steps that double it, each step halved (up to CONTINUATION_HALVINGS
     times) where Newton fails on it: (linearisation, iterations, stiffness, failure)."""
@@ -791,7 +792,7 @@ def solve_level(model: Model, start: Iterate, tolerance: float, continuation: bo
             lin, iterations, _, failure = newton(other, cold_start(other), tolerance, limit)
             total += iterations
             if not failure:
-                lin, more, stiffness, failure = continued(model, fraction, lin, tolerance, path)
+                lin, more, stiffness, failure = continued(model, fraction, lin, path, tolerance)
                 total += more
                 if not failure:
                     return lin, total, stiffness, "", f"{path.word} continuation from {fraction:g} of the {path.quantity}"
