@@ -10,7 +10,7 @@ import pytest
 import lubecontact as lc
 from lubecontact.model import monolithic_newton as mn
 from lubecontact.model.auto_effects import operating_point
-from lubecontact.model.fluid_film import fluid_faces, fluid_film
+from lubecontact.model.fluid_film import fluid_faces, fluid_film, open_film_diagonal
 from lubecontact.model.model import Model
 from lubecontact.model.prepare import prepare
 from lubecontact.numerics.complementarity import fischer_burmeister
@@ -131,6 +131,40 @@ def test_a_newton_that_cannot_converge_says_where_and_keeps_its_state():
     # each continuation it tried is named, with how far it got: here no cold start of either
     assert "; load continuation: no cold start converged at 0.5 to 0.015625 of the force" in ds.attrs["notes"]
     assert "; speed continuation: no cold start converged at 0.5 to 0.015625 of the speed" in ds.attrs["notes"]
+
+
+def test_the_open_films_diagonal_is_patir_and_chengs_conductance_at_half_sigma():
+    """fluid_film.open_film_diagonal against Eq. (2) by hand: k = phi_x(0.5) (0.5 sigma)^3 /
+    (12 mu), phi_x = 1 - 0.9 exp(-0.56 H), on the four faces of an interior cell."""
+    model = Model.assemble(prepare(lc.load_scene(TABLE1, {"mesh.nx": 21, "mesh.ny": 11})).scene)
+    mesh = model.mesh
+    k = (1.0 - 0.9 * np.exp(-0.56 * 0.5)) * (0.5 * SIGMA) ** 3 / (12.0 * MU)
+    expected = k * (2.0 * mesh.dy / mesh.dx + 2.0 * mesh.dx / mesh.dy)
+    np.testing.assert_allclose(open_film_diagonal(model)[1:-1, 1:-1], expected, rtol=1e-12)
+
+
+def test_a_newton_stalled_by_sealed_cells_converges_on_the_open_films_scale_to_the_nested_answer(monkeypatch):
+    """Table 1 on 51 x 51 at 1.6 mm/s: the Newton on the cells' own outflow scales stalls
+    (cells sealed below the percolation threshold leak at 1e-3 of the open conductance, and
+    their outflow over their own diagonal swings by the pressure of the whole contact); on the
+    open film's scale it converges, and the polish on the cells' own scales lands on the
+    nested solver's answer (a separate solver of the same discrete problem)."""
+    calls = []
+    iteration = mn.newton_iteration
+
+    def recorded(model, start, tolerance, max_iterations, open_film_floor=False):
+        result = iteration(model, start, tolerance, max_iterations, open_film_floor)
+        calls.append((open_film_floor, not result[3]))
+        return result
+
+    monkeypatch.setattr(mn, "newton_iteration", recorded)
+    nested, newton = newton_and_nested({"operating.speed": 0.001585})
+    assert int(nested.converged) == 1 and int(newton.converged) == 1
+    assert (False, False) in calls and (True, True) in calls  # stalled, then converged on the open film's scale
+    assert "continuation" not in newton.attrs["notes"]
+    assert float(newton.contact_resistance) == pytest.approx(float(nested.contact_resistance), rel=1e-5)
+    assert float(newton.friction_coefficient) == pytest.approx(float(nested.friction_coefficient), rel=1e-5)
+    assert float(newton.fluid_force) == pytest.approx(float(nested.fluid_force), abs=1e-6 * 5.0)
 
 
 def test_newton_is_refused_where_it_does_not_reach_yet():

@@ -15,7 +15,9 @@ import numpy as np
 from lubecontact.model.model import Model, State
 from lubecontact.numerics.control_volume import ControlVolumeMean, GaussHalfCells, control_volume_mean
 from lubecontact.numerics.expected_gap_cells import ExpectedGapHalfCells
+from lubecontact.numerics.reynolds import cell_diagonal, face_transmissibilities
 from lubecontact.physics.flow_factors import (
+    H_VALID,
     expected_gap_and_slope,
     percolating_coefficient_and_slope,
     poiseuille_coefficient_and_slope,
@@ -113,6 +115,15 @@ def fluid_film(model: Model, film: np.ndarray, slopes: bool = False):
     if slopes:
         return h_t, k, dh_t, dk
     return h_t, k
+
+
+def open_film_diagonal(model: Model) -> np.ndarray:
+    """The Poiseuille diagonal A_ii (ny, nx), m^3/(Pa s), each cell of the mesh would have
+    were every face to conduct as the film at the percolation law's reference H = H_VALID
+    (flow_factors.percolating_coefficient_and_slope: Patir-Cheng's coefficient there, the
+    percolation law below it): the conductance of a just-open rough film. Rough surfaces."""
+    reference = float(coefficient_law(model)(np.array(H_VALID * model.contact.sigma))[0])
+    return cell_diagonal(model.mesh, *face_transmissibilities(model.mesh, np.full(model.mesh.shape, reference)))
 
 
 def fluid_faces(model: Model, film: np.ndarray):

@@ -34,7 +34,11 @@ A cold start begins from the physics (cold_start); with asperity contact it firs
 the same problem on the mesh with every other node (down to NESTED_COARSEST nodes a side)
 and starts from its interpolated solution; where Newton still fails from the start, the
 load is approached by continuation from a fraction of it, and where that stalls (near
-lift-off) the speed from a fraction of it (continuation_paths).
+lift-off) the speed from a fraction of it (continuation_paths). A steady Newton on a rough
+Newtonian film that stalls is retried first with each cell's outflow scaled by at least the
+open film's diagonal, then polished on the cells' own scales (newton): a cell sealed below
+the percolation threshold otherwise measures its outflow as the pressure that would push it
+through the seal.
 
 Stopping tests, in physical units and all met together (``solver.tolerance`` = tol):
 |F_fluid + F_contact - F| <= tol F, max |R_delta| <= tol max(range of delta, h_s) (in a
@@ -57,7 +61,8 @@ from scipy.sparse.linalg import LinearOperator, gmres, splu
 from lubecontact.model.auto_effects import decreasing_root, operating_point
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.evaluation import beyond_the_radius, film_scale, fluid_load, fluid_load_slopes
-from lubecontact.model.fluid_film import fluid_exterior, fluid_faces, fluid_film, squeeze_content, yield_stress_law
+from lubecontact.model.fluid_film import (fluid_exterior, fluid_faces, fluid_film, open_film_diagonal, squeeze_content,
+                                          yield_stress_law)
 from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.complementarity import fischer_burmeister
 from lubecontact.numerics.reynolds import ReynoldsSolution, interior_nodes, reynolds_system, solve_reynolds
@@ -172,6 +177,7 @@ class Linearisation:
     # evaluation.fluid_load_slopes
     load_weight: np.ndarray | None = None
     load_film_slope: np.ndarray | None = None
+    open_film_floor: bool = False  # the outflow scale floored at the open film's (linearise)
 
     def rebranched(self, slopes: tuple) -> "Linearisation":
         """The same residual with J_pp and J_ph weighted by other Fischer-Burmeister slopes
@@ -229,9 +235,12 @@ def projects_pressure(model: Model) -> bool:
     return newtonian_step(model) and model.scene.effects.cavitation != "none"
 
 
-def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisation:
+def linearise(model: Model, it: Iterate, smoothing: float = 0.0, open_film_floor: bool = False) -> Linearisation:
     """The residual of the module docstring at ``it`` and its Jacobian blocks, the
-    Fischer-Burmeister function smoothed by ``smoothing`` (Pa; complementarity.py)."""
+    Fischer-Burmeister function smoothed by ``smoothing`` (Pa; complementarity.py);
+    ``open_film_floor``: each cell's outflow scaled by at least the diagonal of the open film
+    (fluid_film.open_film_diagonal) instead of its own (newton: the start of a steady solve
+    whose Newton stalled)."""
     mesh, scene = model.mesh, model.scene
     force = scene.operating.force
     film = model.undeformed_gap + it.z + it.delta
@@ -285,6 +294,8 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
             parts = LinearOutflow(system.matrix, system.matrix.diagonal(), system.matrix @ p - system.rhs, film_slopes)
         if newtonian_step(model):  # a step's sealed cells (integrator.Squeeze.outflow_scale_floor)
             parts = with_scale_floor(parts, model.squeeze.outflow_scale_floor(mesh.nodal_area[unknown], nominal))
+        elif open_film_floor:  # a steady solve's sealed cells, measured on the open film (newton)
+            parts = with_scale_floor(parts, open_film_diagonal(model)[unknown])
         w, scale = parts.outflow, parts.scale
         if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
             r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
@@ -316,7 +327,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0) -> Linearisatio
     load_weight, load_film_slope = fluid_load_slopes(model, state)
     return Linearisation(state, r_p, r_delta, scale_h * (state.total_force - target) / force, unknown, contact_slope,
                          pressure_scale, scale_h, smoothing, load_slope, slopes, parts, load_weight,
-                         np.zeros(mesh.shape) if load_film_slope is None else load_film_slope)
+                         np.zeros(mesh.shape) if load_film_slope is None else load_film_slope, open_film_floor)
 
 
 def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None,
@@ -542,13 +553,47 @@ def smoothing_for(lin: Linearisation) -> float:
     return SMOOTHING_FACTOR * min(1.0, np.sqrt(2.0 * lin.merit())) * lin.pressure_scale
 
 
+def measures_sealed_cells(model: Model) -> bool:
+    """Whether a stalled Newton on ``model`` retries with the open film's outflow scale
+    (newton): a steady solve of a Newtonian film between rough surfaces, whose percolation
+    law seals cells (a time step has its own floor, Squeeze.outflow_scale_floor; a grease's
+    solves were not tried with it)."""
+    return model.squeeze is None and model.contact is not None and model.hydrodynamic and yield_stress_law(model) is None
+
+
 def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
-    """Newton with backtracking from ``start``: (linearisation at the last iterate,
-    iterations, dF/dz, failure message or "")."""
+    """Newton with backtracking from ``start`` (newton_iteration): (linearisation at the
+    last iterate, iterations, dF/dz, failure message or ""). Where it fails on a model that
+    measures_sealed_cells, a second Newton from the same start scales each cell's outflow by
+    at least the open film's diagonal (fluid_film.open_film_diagonal), and a third from its solution
+    polishes it with the cells' own scales, whose tests are the ones met: the floor changes
+    the path, not the solution (a complementarity pair's zero set does not depend on the
+    positive scale of one partner). The first Newton's result where either fails, its failure
+    naming both."""
+    result = newton_iteration(model, start, tolerance, max_iterations)
+    if not result[3] or not measures_sealed_cells(model):
+        return result
+    floored = newton_iteration(model, start, tolerance, max_iterations, open_film_floor=True)
+    iterations = result[1] + floored[1]
+    if floored[3]:
+        return result[0], iterations, result[2], f"{result[3]}; on the open film's outflow scale too: {floored[3]}"
+    state = floored[0].state
+    polished = newton_iteration(model, Iterate(state.fluid_pressure, state.delta, state.z), tolerance, max_iterations)
+    if polished[3]:
+        return result[0], iterations + polished[1], result[2], (
+            f"{result[3]}; converged on the open film's outflow scale, but not from there on the cells' own: {polished[3]}")
+    return polished[0], iterations + polished[1], polished[2], ""
+
+
+def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterations: int,
+                     open_film_floor: bool = False):
+    """Newton with backtracking from ``start``, each cell's outflow scaled by at least the
+    open film's diagonal where ``open_film_floor`` (linearise): (linearisation at the last
+    iterate, iterations, dF/dz, failure message or "")."""
     it = start
     try:
-        lin = linearise(model, it)
-        lin = linearise(model, it, smoothing_for(lin))
+        lin = linearise(model, it, open_film_floor=open_film_floor)
+        lin = linearise(model, it, smoothing_for(lin), open_film_floor)
     except ValueError as err:
         return None, 0, None, f"the start is outside the model: {err}"
     stiffness = None
@@ -591,7 +636,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
         trial, candidate = accepted
         it, lin = trial, candidate
         if smoothing_for(candidate) < SMOOTHING_UPDATE * candidate.smoothing:
-            lin = linearise(model, it, smoothing_for(candidate))
+            lin = linearise(model, it, smoothing_for(candidate), candidate.open_film_floor)
         forcing = min(0.1, GMRES_FORCING + np.sqrt(lin.merit() / max(merit, 1e-300)))
         history.append(lin.merit())
         if lin.merit() < best[0].merit():
@@ -618,7 +663,7 @@ def line_search(model: Model, it: Iterate, lin: Linearisation, direction, refere
         trial = Iterate(np.maximum(pressure, 0.0) if projected else pressure,
                         it.delta if d_delta is None else it.delta + step * d_delta, it.z + step * dz)
         try:
-            candidate = linearise(model, trial, lin.smoothing)
+            candidate = linearise(model, trial, lin.smoothing, lin.open_film_floor)
         except ValueError:
             candidate = None
         if candidate is not None:

@@ -121,6 +121,17 @@ def face_transmissibilities(mesh, coefficient, faces=None):
     return tx, ty
 
 
+def cell_diagonal(mesh, tx, ty) -> np.ndarray:
+    """Each cell's Poiseuille diagonal A_ii (ny, nx), m^3/(Pa s): the sum of the
+    transmissibilities of its faces (``face_transmissibilities``)."""
+    diagonal = np.zeros(mesh.shape)
+    diagonal[:, :-1] += tx
+    diagonal[:, 1:] += tx
+    diagonal[:-1, :] += ty
+    diagonal[1:, :] += ty
+    return diagonal
+
+
 def couette_face_flux(mesh, expected_gap, speed, faces=None):
     """Couette flux (U/2) h_T,f dy through each x face, m^3/s, (ny, nx-1); h_T,f the mean of
     the nodal h_T, or faces.gap_x (percolation.FaceFilm)."""
@@ -156,12 +167,7 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_
     coefficient = np.asarray(coefficient, dtype=float)
     _check_fields(mesh, expected_gap, coefficient)
     tx, ty = face_transmissibilities(mesh, coefficient, faces)
-
-    diagonal = np.zeros(mesh.shape)
-    diagonal[:, :-1] += tx
-    diagonal[:, 1:] += tx
-    diagonal[:-1, :] += ty
-    diagonal[1:, :] += ty
+    diagonal = cell_diagonal(mesh, tx, ty)
     unknown = interior_nodes(mesh.shape, mesh.line) & (diagonal > 0.0)
     number = unknown_numbers(unknown)
     n = int(unknown.sum())
