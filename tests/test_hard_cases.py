@@ -255,6 +255,13 @@ CASES = {
     # and on both paths (thirty-sixth session)
     "newton_table1_0040": (False, {"solver.method": "newton", "operating.speed": 0.0398},
                            "converges by a continuation path on the open film's outflow scale, 2 s"),
+    # Fig. 12's tin connector at 30 N (Table 1's tin, its 31 x 21 mesh): the default solver's
+    # nested iteration cycles for 200 iterations and the Newton from its last state stalls; a
+    # 2-D nested solve that stops is finished by a cold Newton too since the thirty-sixth
+    # session (monolithic_newton.finished_by_newton), here by load continuation
+    "fig12_30_N_2d_finish": (False, {"geometry.radius": 0.0025, "operating.force": 30.0, "operating.speed": 2.15,
+                                     "mesh.nx": 31, "mesh.ny": 21},
+                             "converges by a cold Newton with load continuation after the nested solve stops, 9 s"),
 }
 
 
@@ -318,7 +325,7 @@ CONVERGED = {"soft_film_M13", "soft_film_M23", "smooth_coarse_line", "heavy_load
              "fretting_stiff_grease_51_nodes", "fretting_1_Pa_s_51_nodes", "fretting_1_Pa_s_20_N_51_nodes",
              "sliding_random_vibration", "bingham_stop", "light_mass_stop", "fretting_10_Pa_s_20_N_51_nodes",
              "grease_stop_20_N", "newton_default_mesh", "newton_lift_off_20_N", "newton_lift_off_20_N_0100",
-             "newton_lift_off_20_N_0158", "newton_10_N_0063", "newton_table1_0040"}
+             "newton_lift_off_20_N_0158", "newton_10_N_0063", "newton_table1_0040", "fig12_30_N_2d_finish"}
 
 
 def failing_today(case):
@@ -336,6 +343,8 @@ def test_hard_case_converges_and_says_so(case, outcomes):
         assert ds["min_film_thickness"].item() > 1e-9
     if case == "newton_lift_off_20_N_0100":  # reached by a path: the note says which, since the path decides the state
         assert "one Newton reached this point by speed continuation from 0.5 of the speed" in ds.attrs["notes"]
+    if case == "fig12_30_N_2d_finish":  # the default solver says which solver converged it, and how
+        assert "the nested solver stopped" in ds.attrs["notes"] and "one Newton from a cold start" in ds.attrs["notes"]
 
 
 STEP_FAILURE = re.compile(r"NOT CONVERGED: time step at t = (\S+) s \(dt = (\S+) s\) (?:did not converge|was not taken) "

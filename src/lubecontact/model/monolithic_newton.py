@@ -903,21 +903,25 @@ def finishes(model: Model) -> bool:
     return model.scene.effects.cavitation != "jfo"
 
 
-def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics):
+def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics, continued: bool = False):
     """(state, diagnostics, note) where a nested solve stopped without meeting its
-    tolerances: one Newton from its last state (no continuation: cheap), and on a mesh the
-    dense step serves (line contacts, DENSE_NODES) also a cold one with load continuation;
-    the first that converges, with a note saying so. Else the nested solve's own state, its
-    failure naming why each stopped (the nested solver's reason first), and an empty note."""
+    tolerances: one Newton from its last state (no continuation: cheap), then a cold one with
+    continuation (continuation_paths); the first that converges, with a note saying so. Else
+    the nested solve's own state, its failure naming why each stopped (the nested solver's
+    reason first), and an empty note. The cold start was kept to line contacts while a 2-D
+    Newton step was a dense solve; with GMRES it takes the two points of Fig. 12 (30 N) where
+    the nested solver and the Newton from its state stall: 0.1 and 3.9 s (thirty-sixth
+    session). A solve ``continued`` from a warm start (a sweep's previous point) is not
+    restarted cold here: a cold start may reach another state (docs/physics.md section 23),
+    and the sweep restarts it itself and marks it (studies/sweep.py, cold_restart)."""
     if diagnostics.converged or not finishes(model):
         return state, diagnostics, ""
+    cold = [] if continued else [("from a cold start", None, True)]
     if model.contact is None and float(np.min(state.film)) < CLOSED_FILM:  # the smooth film closed: no start
-        attempts = [("from a cold start", None, True)]
+        attempts = cold
     else:
         attempts = [("from its last state", WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure),
-                     False)]
-        if dense_step_serves(model):
-            attempts.append(("from a cold start", None, True))
+                     False), *cold]
     why = diagnostics.failure or (f"{diagnostics.iterations} iteration(s) without its deformation change falling below "
                                   f"the tolerance: the last was {diagnostics.deformation_residual:.3g} m")
     newton_failures = []
@@ -960,7 +964,7 @@ def steady_solve(model: Model, initial: WarmStart | None = None) -> tuple[State,
         nested = coupled_solve(model, initial)
     except SolveError as err:  # raised before it had a state to report
         return newton_after_nested_raised(model, initial, err)
-    state, diag, finished = finished_by_newton(model, *nested)
+    state, diag, finished = finished_by_newton(model, *nested, continued=initial is not None)
     return state, diag, [finished] if finished else []
 
 
