@@ -16,8 +16,10 @@ import pytest
 import xarray as xr
 
 from lubecontact.cli import main as cli
+from lubecontact.io.job_plans import solve_command
 from lubecontact.io.output_path import OutputPathError, check_output_path
 from lubecontact.model import resources
+from lubecontact.scene.scene import load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = str(ROOT / "config" / "scenes" / "table1.yaml")
@@ -458,3 +460,16 @@ def test_the_ends_of_each_physical_range_solve_or_are_refused_as_a_scene(tmp_pat
     assert code in (cli.EXIT_OK, cli.EXIT_NOT_CONVERGED, cli.EXIT_BAD_INPUT) and "internal error" not in err, err
     if code != cli.EXIT_BAD_INPUT:
         assert xr.load_dataset(tmp_path / "e.nc")["converged"].item() == int(code == 0)
+
+
+def test_a_figure_cases_command_line_gives_back_its_scene(capsys, tmp_path):
+    """The command line a figure case's file carries in its CF history (job_plans.
+    solve_command, written by workflow/scripts/solve_chunk.py) rebuilds the planned scene: a
+    measured surface, a number in exponent form, a boolean and a word, read back by --set."""
+    overrides = {"roughness.surface": "../surfaces/honed.asc", "operating.speed": 1e-06,
+                 "effects.flow_factors": False, "solver.method": "newton"}
+    out = str(tmp_path / "a case.nc")
+    argv = shlex.split(solve_command({"id": "x", "scene": SCENE, "set": overrides}, out))
+    assert argv[:3] == ["lubecontact", "solve", SCENE] and argv[-2:] == ["--out", out]
+    code, shown, _ = run(capsys, "show", *argv[2:-2])
+    assert code == 0 and load_scene(SCENE, overrides).hash in shown

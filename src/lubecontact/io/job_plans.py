@@ -9,6 +9,7 @@ role the params rerun trigger had).
 from __future__ import annotations
 
 import json
+import shlex
 from pathlib import Path
 
 from lubecontact.io.atomic_write import write_text
@@ -30,3 +31,12 @@ def write_plan(path, data) -> str:
 
 def read_plan(path):
     return json.loads(Path(path).read_text())
+
+
+def solve_command(case: dict, out: str) -> str:
+    """The command line that solves a plan's case ({id, scene, set}) on its own and writes
+    it to ``out``, run from the directory the plan's scene path is relative to (the
+    repository's root): ``lubecontact solve SCENE --set KEY=VALUE ... --out OUT``, shell-quoted,
+    each value as JSON, which the CLI's YAML reading of --set gives back unchanged."""
+    overrides = [f"--set={key}={json.dumps(value)}" for key, value in case["set"].items()]
+    return shlex.join(["lubecontact", "solve", case["scene"], *overrides, "--out", str(out)])
