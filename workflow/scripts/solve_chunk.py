@@ -5,9 +5,9 @@ file is complete (it reads back with its scene hash and the fingerprint of the c
 solver sources: lubecontact.io.case_files) is kept, so a job rerun because its membership
 changed or because it was killed solves only what is missing; an unreadable file is
 solved again. Each file's CF history names the command line that solves it alone
-(job_plans.solve_command). A case that does not converge is written with converged = 0 and the job goes
-on; a scene that does not rebuild to its id, or a solver exception, fails the job loudly
-(its traceback in the job's log).
+(job_plans.solve_command). A case that does not converge is written with converged = 0 and
+the job goes on; a scene that does not rebuild to its id, or a solver exception, fails the
+job loudly (its traceback in the job's log).
 """
 
 import this_tree  # noqa: F401  (this tree's src/ first on sys.path)

@@ -177,7 +177,7 @@ class Linearisation:
     # evaluation.fluid_load_slopes
     load_weight: np.ndarray | None = None
     load_film_slope: np.ndarray | None = None
-    open_film_floor: bool = False  # the outflow scale floored at the open film's (linearise)
+    outflow_floor: np.ndarray | None = None  # (ny, nx) floor of the outflow scale, m^3/(Pa s) (linearise)
 
     def rebranched(self, slopes: tuple) -> "Linearisation":
         """The same residual with J_pp and J_ph weighted by other Fischer-Burmeister slopes
@@ -235,12 +235,13 @@ def projects_pressure(model: Model) -> bool:
     return newtonian_step(model) and model.scene.effects.cavitation != "none"
 
 
-def linearise(model: Model, it: Iterate, smoothing: float = 0.0, open_film_floor: bool = False) -> Linearisation:
+def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
+              outflow_floor: np.ndarray | None = None) -> Linearisation:
     """The residual of the module docstring at ``it`` and its Jacobian blocks, the
     Fischer-Burmeister function smoothed by ``smoothing`` (Pa; complementarity.py);
-    ``open_film_floor``: each cell's outflow scaled by at least the diagonal of the open film
-    (fluid_film.open_film_diagonal) instead of its own (newton: the start of a steady solve
-    whose Newton stalled)."""
+    ``outflow_floor`` ((ny, nx), m^3/(Pa s)): each cell's outflow scaled by at least it instead
+    of its own diagonal (newton: the open film's, fluid_film.open_film_diagonal, where a steady
+    Newton stalled)."""
     mesh, scene = model.mesh, model.scene
     force = scene.operating.force
     film = model.undeformed_gap + it.z + it.delta
@@ -294,8 +295,8 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0, open_film_floor
             parts = LinearOutflow(system.matrix, system.matrix.diagonal(), system.matrix @ p - system.rhs, film_slopes)
         if newtonian_step(model):  # a step's sealed cells (integrator.Squeeze.outflow_scale_floor)
             parts = with_scale_floor(parts, model.squeeze.outflow_scale_floor(mesh.nodal_area[unknown], nominal))
-        elif open_film_floor:  # a steady solve's sealed cells, measured on the open film (newton)
-            parts = with_scale_floor(parts, open_film_diagonal(model)[unknown])
+        elif outflow_floor is not None:  # a steady solve's sealed cells, measured on the open film (newton)
+            parts = with_scale_floor(parts, outflow_floor[unknown])
         w, scale = parts.outflow, parts.scale
         if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
             r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
@@ -327,7 +328,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0, open_film_floor
     load_weight, load_film_slope = fluid_load_slopes(model, state)
     return Linearisation(state, r_p, r_delta, scale_h * (state.total_force - target) / force, unknown, contact_slope,
                          pressure_scale, scale_h, smoothing, load_slope, slopes, parts, load_weight,
-                         np.zeros(mesh.shape) if load_film_slope is None else load_film_slope, open_film_floor)
+                         np.zeros(mesh.shape) if load_film_slope is None else load_film_slope, outflow_floor)
 
 
 def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None,
@@ -591,9 +592,10 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
     open film's diagonal where ``open_film_floor`` (linearise): (linearisation at the last
     iterate, iterations, dF/dz, failure message or "")."""
     it = start
+    floor = open_film_diagonal(model) if open_film_floor else None
     try:
-        lin = linearise(model, it, open_film_floor=open_film_floor)
-        lin = linearise(model, it, smoothing_for(lin), open_film_floor)
+        lin = linearise(model, it, outflow_floor=floor)
+        lin = linearise(model, it, smoothing_for(lin), floor)
     except ValueError as err:
         return None, 0, None, f"the start is outside the model: {err}"
     stiffness = None
@@ -636,7 +638,7 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
         trial, candidate = accepted
         it, lin = trial, candidate
         if smoothing_for(candidate) < SMOOTHING_UPDATE * candidate.smoothing:
-            lin = linearise(model, it, smoothing_for(candidate), candidate.open_film_floor)
+            lin = linearise(model, it, smoothing_for(candidate), candidate.outflow_floor)
         forcing = min(0.1, GMRES_FORCING + np.sqrt(lin.merit() / max(merit, 1e-300)))
         history.append(lin.merit())
         if lin.merit() < best[0].merit():
@@ -663,7 +665,7 @@ def line_search(model: Model, it: Iterate, lin: Linearisation, direction, refere
         trial = Iterate(np.maximum(pressure, 0.0) if projected else pressure,
                         it.delta if d_delta is None else it.delta + step * d_delta, it.z + step * dz)
         try:
-            candidate = linearise(model, trial, lin.smoothing, lin.open_film_floor)
+            candidate = linearise(model, trial, lin.smoothing, lin.outflow_floor)
         except ValueError:
             candidate = None
         if candidate is not None:
@@ -811,7 +813,8 @@ def continuation_paths(model: Model) -> list[tuple[Continuation, list[float]]]:
     1/2, 1/4, ... of it (the asperities carry the slower contact). Near lift-off the load
     path crosses a touch-down (docs/physics.md section 23) and stalls: on Table 1 at 20 N and
     0.1 m/s (51 x 51), after the cold start and the load path stall, the speed path from half
-    the speed converges, 9 s in all (tests/test_hard_cases.py, thirty-fifth session). Not
+    the speed converges, 9 s in all (tests/test_hard_cases.py, thirty-fifth session; 27 s
+    since each stalled Newton of the load path is retried on the open film's scale). Not
     from above: cold starts at 2 to 64 times 0.158 m/s on the same mesh all failed, 39 s in
     all."""
     fractions = [2.0**-k for k in range(1, CONTINUATION_HALVINGS + 1)]
