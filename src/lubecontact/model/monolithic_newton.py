@@ -10,7 +10,10 @@ holds the whole problem:
     R_z     = h_s (F_fluid + F_contact - F) / F  force balance, Eq. (18)
 
 (a time step adds its squeeze outflow to w, and a contact with mass and spring has F(z),
-Model.load).
+Model.load). With mass-conserving (JFO) cavitation the pressure unknown is Elrod and Adams'
+universal variable u, p = max(u, 0) and film content theta = 1 + min(u, 0)/P, and R_p is the
+cell's mass balance w(u)/A_ii itself (numerics/jfo_outflow.py); the pressure's step is then
+the pressure branch of u's (Linearisation.physical).
 
 with w = A(h) p - b(h) the finite-volume outflow of each cell (numerics/reynolds.py), scaled
 by its diagonal to a pressure, phi_FB the Fischer-Burmeister function
@@ -64,7 +67,9 @@ from lubecontact.model.evaluation import beyond_the_radius, film_scale, fluid_lo
 from lubecontact.model.fluid_film import (fluid_exterior, fluid_faces, fluid_film, open_film_diagonal, squeeze_content,
                                           yield_stress_law)
 from lubecontact.model.model import Model, SolveError, State
+from lubecontact.numerics.cavitation_jfo import JFOSolution, upwind_content
 from lubecontact.numerics.complementarity import fischer_burmeister
+from lubecontact.numerics.jfo_outflow import content_field, mass_conserving_outflow
 from lubecontact.numerics.reynolds import ReynoldsSolution, interior_nodes, reynolds_system, solve_reynolds
 from lubecontact.numerics.reynolds_jacobian import (LinearOutflow, exterior_film_jacobian, outflow_film_jacobian,
                                                      squeeze_film_jacobian, with_scale_floor)
@@ -178,6 +183,11 @@ class Linearisation:
     load_weight: np.ndarray | None = None
     load_film_slope: np.ndarray | None = None
     outflow_floor: np.ndarray | None = None  # (ny, nx) floor of the outflow scale, m^3/(Pa s) (linearise)
+    # with mass-conserving cavitation the pressure unknown is the universal variable u (Pa,
+    # (ny, nx), jfo_outflow.py) and dp/du at every node (1 on the pressure branch, else 0);
+    # None: the unknown is the pressure itself
+    variable: np.ndarray | None = None
+    pressure_slope: np.ndarray | None = None
 
     def rebranched(self, slopes: tuple) -> "Linearisation":
         """The same residual with J_pp and J_ph weighted by other Fischer-Burmeister slopes
@@ -199,6 +209,16 @@ class Linearisation:
     def j_ph(self) -> sp.csr_matrix | None:
         """d R_p / d h at every node (sparse)."""
         return self.jacobians[1]
+
+    def iterate(self) -> Iterate:
+        """The iterate this linearisation was taken at (its pressure unknown: p, or u with JFO)."""
+        state = self.state
+        return Iterate(state.fluid_pressure if self.variable is None else self.variable, state.delta, state.z)
+
+    def physical(self, step: np.ndarray) -> np.ndarray:
+        """The pressure change (Pa, (ny, nx)) of a change ``step`` of the pressure unknown:
+        ``step`` itself, or with JFO its pressure branch (pressure_slope)."""
+        return step if self.pressure_slope is None else self.pressure_slope * step
 
     def merit(self) -> float:
         """Half the squared norm of the scaled residual (p by p_s, films by h_s); inf where it
@@ -257,7 +277,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
         contact_pressure, contact_slope = model.contact.pressure_and_slope(film)
     pressure = np.zeros(mesh.shape)
     r_p = exact = np.zeros(0)
-    unknown = reynolds = h_t = k = faces = face_slopes = slopes = parts = content = None
+    unknown = reynolds = h_t = k = faces = face_slopes = slopes = parts = content = variable = pressure_slope = None
     if model.hydrodynamic:
         h_t, k = fluid_film(model, film)
         faces, face_slopes = fluid_faces(model, film)
@@ -279,15 +299,25 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
         # at the trial points of a line search (about four in five linearisations)
         added = squeeze_slope if model.squeeze is not None else None
 
-        def film_slopes():
-            """(dw/dh, dA_ii/dh) of the Newtonian outflow, built when a direction asks."""
+        def film_slopes(face_content=None):
+            """(dw/dh, dA_ii/dh) of the Newtonian outflow, built when a direction asks; JFO's
+            Couette faces weighted by ``face_content`` (jfo_outflow.py)."""
             nodal = (None, None) if face_slopes is not None else fluid_film(model, film, slopes=True)[2:]
-            j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, *nodal)
+            j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, *nodal,
+                                               face_content=face_content)
             if exterior is not None:
                 j_wh = j_wh + exterior_film_jacobian(unknown, exterior, pressure)
             return (j_wh if added is None else j_wh + added()), j_sh
 
-        if grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
+        mass_conserving = scene.effects.cavitation == "jfo"
+        if mass_conserving:  # the unknown is the universal variable u (jfo_outflow.py)
+            variable = pressure.copy()
+            parts, split = mass_conserving_outflow(mesh, system, h_t, scene.operating.speed, faces, p, nominal,
+                                                   film_slopes)
+            pressure[unknown] = split.pressure
+            pressure_slope = np.zeros(mesh.shape)
+            pressure_slope[unknown] = split.pressurised
+        elif grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
             _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)  # nodal dh_T/dh, dk/dh
             parts = yield_stress_outflow(mesh, system, pressure, k, h_t, gap_slope, scene.operating.speed, grease,
                                          faces, face_slopes, coefficient_slope, added_outflow_film=added)
@@ -298,7 +328,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
         elif outflow_floor is not None:  # a steady solve's sealed cells, measured on the open film (newton)
             parts = with_scale_floor(parts, outflow_floor[unknown])
         w, scale = parts.outflow, parts.scale
-        if scene.effects.cavitation == "none":  # full Sommerfeld: the flow balance itself
+        if scene.effects.cavitation in ("none", "jfo"):  # full Sommerfeld, or JFO's u: the flow balance itself
             r_p, d_a, d_b = w / scale, np.zeros_like(p), np.ones_like(p)
             exact = r_p
         else:
@@ -308,9 +338,17 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
         # cavitated: the outflow, not the pressure, is the positive partner (a sealed node with
         # p = 0 and no outflow is full of fluid)
         cavitated = np.zeros(mesh.shape, dtype=bool)
-        if scene.effects.cavitation != "none":
-            cavitated[unknown] = w / scale > p
-        reynolds = ReynoldsSolution(pressure=pressure, cavitated=cavitated, iterations=0, residual=0.0, converged=True)
+        if mass_conserving:
+            cavitated[unknown] = ~split.pressurised
+            theta = content_field(mesh, unknown, split)
+            reynolds = JFOSolution(pressure=pressure, content=theta, cavitated=cavitated, iterations=0, residual=0.0,
+                                   converged=True, face_content=upwind_content(mesh, theta, scene.operating.speed),
+                                   unknown=unknown)
+        else:
+            if scene.effects.cavitation != "none":
+                cavitated[unknown] = w / scale > p
+            reynolds = ReynoldsSolution(pressure=pressure, cavitated=cavitated, iterations=0, residual=0.0,
+                                        converged=True)
     area = mesh.nodal_area
     total = pressure + contact_pressure
     state = State(
@@ -328,7 +366,8 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
     load_weight, load_film_slope = fluid_load_slopes(model, state)
     return Linearisation(state, r_p, r_delta, scale_h * (state.total_force - target) / force, unknown, contact_slope,
                          pressure_scale, scale_h, smoothing, load_slope, slopes, parts, load_weight,
-                         np.zeros(mesh.shape) if load_film_slope is None else load_film_slope, outflow_floor)
+                         np.zeros(mesh.shape) if load_film_slope is None else load_film_slope, outflow_floor,
+                         variable, pressure_slope)
 
 
 def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None,
@@ -356,17 +395,20 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
         base[lin.unknown] = lu.solve(-lin.r_p)
     fluid_per_dz = pressure_response(np.ones(mesh.shape))
     # dF/dz at fixed delta, N/m (< 0)
-    stiffness = float(np.sum((fluid_per_dz + lin.contact_slope) * area) + np.sum(lin.load_film_slope))
+    stiffness = float(np.sum((lin.physical(fluid_per_dz) + lin.contact_slope) * area) + np.sum(lin.load_film_slope))
+    base_pressure = lin.physical(base)
     if model.deformation is None:
-        dz = (-lin.r_z - weight * float(np.sum(base * area))) / (weight * (stiffness - lin.load_slope))
+        dz = (-lin.r_z - weight * float(np.sum(base_pressure * area))) / (weight * (stiffness - lin.load_slope))
         return base + dz * fluid_per_dz, None, dz, stiffness
 
     n = mesh.nx * mesh.ny
-    rhs = np.append((-lin.r_delta + model.deformation(base)).ravel(), -lin.r_z - weight * float(np.sum(base * area)))
+    rhs = np.append((-lin.r_delta + model.deformation(base_pressure)).ravel(),
+                    -lin.r_z - weight * float(np.sum(base_pressure * area)))
     if influence is not None:
         y = dense_reduced_solve(model, lin, lu, weight, rhs, influence)
     else:
-        y = krylov_reduced_solve(model, lin, pressure_response, weight, rhs, forcing, kept)
+        y = krylov_reduced_solve(model, lin, lambda dh: lin.physical(pressure_response(dh)), weight, rhs, forcing,
+                                 kept)
     d_delta, dz = y[:n].reshape(mesh.shape), float(y[n])
     return base + pressure_response(d_delta + dz), d_delta, dz, stiffness
 
@@ -396,7 +438,7 @@ def dense_reduced_solve(model: Model, lin: Linearisation, lu, weight: float, rhs
     if lu is not None:
         fluid = np.zeros((n, n))
         fluid[lin.unknown.ravel()] = lu.solve(-lin.j_ph.toarray())
-        response = response + fluid
+        response = response + lin.physical(np.ones(mesh.shape)).reshape(n, 1) * fluid  # pressure per film
     coupled = influence @ response
     area, film_slope = lin.load_weight.ravel(), lin.load_film_slope.ravel()
     matrix = np.zeros((n + 1, n + 1))
@@ -438,7 +480,9 @@ class NearFieldPreconditioner:
         mesh = model.mesh
         n, m = mesh.nx * mesh.ny, lin.j_pp.shape[0]
         near = model.deformation.near_field(NEAR_FIELD_RADIUS)
-        embed = sp.csr_matrix((np.ones(m), (np.flatnonzero(lin.unknown.ravel()), np.arange(m))), shape=(n, m))
+        # the unknowns' pressures among the nodes, per unit of the pressure unknown (Linearisation.physical)
+        embed = sp.csr_matrix((lin.physical(np.ones(mesh.shape))[lin.unknown], (np.flatnonzero(lin.unknown.ravel()),
+                                                                                  np.arange(m))), shape=(n, m))
         slope, area, film_slope = lin.contact_slope.ravel(), lin.load_weight.ravel(), lin.load_film_slope.ravel()
         j_ph = sp.csr_matrix(lin.j_ph)
         block = sp.bmat([[lin.j_pp, j_ph], [-(near @ embed), sp.identity(n) - near @ sp.diags(slope)]], format="csc")
@@ -578,8 +622,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
     iterations = result[1] + floored[1]
     if floored[3]:
         return result[0], iterations, result[2], f"{result[3]}; on the open film's outflow scale too: {floored[3]}"
-    state = floored[0].state
-    polished = newton_iteration(model, Iterate(state.fluid_pressure, state.delta, state.z), tolerance, max_iterations)
+    polished = newton_iteration(model, floored[0].iterate(), tolerance, max_iterations)
     if polished[3]:
         return result[0], iterations + polished[1], result[2], (
             f"{result[3]}; converged on the open film's outflow scale, but not from there on the cells' own: {polished[3]}")
@@ -794,8 +837,7 @@ def continued(model: Model, fraction: float, lin: Linearisation, path: Continuat
         target = min(1.0, 2.0 * fraction)
         for _ in range(CONTINUATION_HALVINGS + 1):
             step_model = model if target == 1.0 else path.variant(model, target)
-            it = Iterate(lin.state.fluid_pressure, lin.state.delta, lin.state.z)
-            trial, iterations, stiffness, failure = newton(step_model, it, tolerance, limit)
+            trial, iterations, stiffness, failure = newton(step_model, lin.iterate(), tolerance, limit)
             total += iterations
             if not failure:
                 lin, fraction = trial, target
@@ -901,11 +943,6 @@ def path_notes(diagnostics: Diagnostics) -> list[str]:
             "the contact has more than one steady state the path decides which it finds (docs/physics.md section 23)"]
 
 
-def finishes(model: Model) -> bool:
-    """Whether one Newton can take over a solve of ``model`` (not JFO)."""
-    return model.scene.effects.cavitation != "jfo"
-
-
 def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics, continued: bool = False):
     """(state, diagnostics, note) where a nested solve stopped without meeting its
     tolerances: one Newton from its last state (no continuation: cheap), then a cold one with
@@ -917,7 +954,7 @@ def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics, con
     session). A solve ``continued`` from a warm start (a sweep's previous point) is not
     restarted cold here: a cold start may reach another state (docs/physics.md section 23),
     and the sweep restarts it itself and marks it (studies/sweep.py, cold_restart)."""
-    if diagnostics.converged or not finishes(model):
+    if diagnostics.converged:
         return state, diagnostics, ""
     cold = [] if continued else [("from a cold start", None, True)]
     if model.contact is None and float(np.min(state.film)) < CLOSED_FILM:  # the smooth film closed: no start
@@ -974,13 +1011,11 @@ def steady_solve(model: Model, initial: WarmStart | None = None) -> tuple[State,
 def newton_after_nested_raised(model: Model, initial: WarmStart | None, error: SolveError):
     """(state, diagnostics, notes) where the nested solve raised before its first state: one
     Newton from the same start, with continuation, the note saying so; SolveError naming
-    both failures where it raises too (or cannot take the scene, finishes). Seen on a smooth
+    both failures where it raises too. Seen on a smooth
     line contact whose spacing leaves the Hertz width ten cells (Table 1 without asperity
     contact at 0.01 m/s, 51 nodes on 0.5 mm): the nested solve starts rigid, and the rigid
     film the load needs is thinner than its coarse cells can carry, so the first force
     balance closes the film (tests/test_hard_cases.py, smooth_coarse_line)."""
-    if not finishes(model):
-        raise error
     try:
         state, diag = monolithic_solve(model, initial)
     except SolveError as newton_error:

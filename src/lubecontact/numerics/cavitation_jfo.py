@@ -92,7 +92,7 @@ class JFOSolution:
                                    self.face_content)
 
 
-def _couette_operator(mesh, expected_gap, speed, unknown, faces=None):
+def couette_operator(mesh, expected_gap, speed, unknown, faces=None):
     """(G, g0): the net Couette outflow of the unknown nodes is G theta_u + g0 for theta = 1
     off the unknowns (boundary and film-less nodes): G (n, n) sparse, g0 (n,) m^3/s."""
     shape = mesh.shape
@@ -115,7 +115,7 @@ def _couette_operator(mesh, expected_gap, speed, unknown, faces=None):
     return G, g0
 
 
-def _face_content(mesh, content, speed):
+def upwind_content(mesh, content, speed):
     """theta upwind of each x face, (ny, nx-1)."""
     return content[:, :-1] if speed >= 0.0 else content[:, 1:]
 
@@ -213,7 +213,7 @@ def solve_jfo(mesh, expected_gap, coefficient, speed, cavitated_guess=None, max_
     system = reynolds_system(mesh, expected_gap, coefficient, speed, faces)
     unknown = system.unknown
     A = system.matrix
-    G, g0 = _couette_operator(mesh, expected_gap, speed, unknown, faces)
+    G, g0 = couette_operator(mesh, expected_gap, speed, unknown, faces)
     n = A.shape[0]
     capacity = np.zeros(n) if storage is None else np.asarray(storage[0], dtype=float)[unknown]
     history = np.zeros(n) if storage is None else np.asarray(storage[1], dtype=float)[unknown]
@@ -259,6 +259,6 @@ def solve_jfo(mesh, expected_gap, coefficient, speed, cavitated_guess=None, max_
         residual=residual,
         converged=bool(repeated and residual <= RESIDUAL_TOLERANCE),
         factor=lu,
-        face_content=_face_content(mesh, content, speed),
+        face_content=upwind_content(mesh, content, speed),
         unknown=unknown,
     )

@@ -56,16 +56,19 @@ def assembled(mesh, unknown, faces) -> sp.csr_matrix:
 
 
 def outflow_film_jacobian(mesh, pressure, unknown, speed, face_slopes: FaceFilm | None = None,
-                          gap_slope=None, coefficient_slope=None) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+                          gap_slope=None, coefficient_slope=None,
+                          face_content: np.ndarray | None = None) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """(d w / d h, d A_ii / d h): (number of unknowns, number of nodes) in m^2/s per m of
     film and m^3/(Pa s) per m, w the net outflow of each unknown node's cell and A_ii the
     diagonal of its row (reynolds.reynolds_system, C order), h the film at every node.
     ``pressure`` (ny, nx) Pa; ``face_slopes`` (rough surfaces: dk/dh_f and dh_T/dh_f on the
-    faces) or the nodal ``gap_slope`` and ``coefficient_slope`` (smooth)."""
+    faces) or the nodal ``gap_slope`` and ``coefficient_slope`` (smooth); ``face_content``
+    (ny, nx-1): the film content carried through each x face, which weights its Couette flux
+    (mass-conserving cavitation, jfo_outflow.py; None: a full film)."""
     ny, nx = mesh.shape
     flat = np.arange(ny * nx).reshape(mesh.shape)
     gx, gy = mesh.dy / mesh.dx, mesh.dx / mesh.dy
-    couette = 0.5 * speed * mesh.dy
+    couette = 0.5 * speed * mesh.dy * (1.0 if face_content is None else face_content)
     (dkx_a, dkx_b, dgx_a, dgx_b), (dky_a, dky_b) = face_slope_pairs(face_slopes, gap_slope, coefficient_slope)
     drop_x = pressure[:, :-1] - pressure[:, 1:]
     drop_y = pressure[:-1, :] - pressure[1:, :]
@@ -106,7 +109,9 @@ def squeeze_film_jacobian(mesh, unknown, coefficient: float, content) -> sp.csr_
 class LinearOutflow:
     """The outflow w = A p - b of a Newtonian film (reynolds.reynolds_system) at one film, with
     what the one Newton's residual phi(p, w/A_ii) needs for its Jacobians (docs/physics.md
-    section 20): A, its diagonal A_ii, w, and ``film_slopes``, which builds (dw/dh, dA_ii/dh)
+    section 20): ``matrix``, the slope of w in the Newton's unknown (A; with mass-conserving
+    cavitation the slope in the universal variable, jfo_outflow.py), the diagonal A_ii of A,
+    w, and ``film_slopes``, which builds (dw/dh, dA_ii/dh)
     (outflow_film_jacobian, plus a step's squeeze_film_jacobian) when a Newton direction asks
     for them: the trial points of a line search need only the residual."""
 
@@ -124,7 +129,8 @@ class LinearOutflow:
 
     def residual_jacobians(self, slope_pressure, slope_flow) -> tuple[sp.csc_matrix, sp.csr_matrix]:
         """(dR/dp, dR/dh) of R = phi(p, w/A_ii) whose slopes in its two arguments are
-        ``slope_pressure`` and ``slope_flow`` (n,): D_a + D_b A/A_ii, and D_b d(w/A_ii)/dh with
+        ``slope_pressure`` and ``slope_flow`` (n,): D_a + D_b M/A_ii (M: ``matrix``), and
+        D_b d(w/A_ii)/dh with
         d(w/s) = dw/s - w ds/s^2."""
         outflow_film, scale_film = self.film_jacobians
         flow = sp.diags(slope_flow / self.scale)

@@ -1153,8 +1153,8 @@ def _rheology_problems(lubricant, effects) -> list[str]:
         )
     if effects is not None and effects.cavitation == "jfo":
         problems.append(
-            f"effects.cavitation = 'jfo' with lubricant.rheology = {law!r}: a grease is solved by one Newton, "
-            f"which has the Reynolds condition and full Sommerfeld so far; allowed: 'reynolds' or 'none'"
+            f"effects.cavitation = 'jfo' with lubricant.rheology = {law!r}: the one Newton's mass-conserving "
+            f"cavitation carries a Newtonian film's Couette flux, not yet a grease's; allowed: 'reynolds' or 'none'"
         )
     return problems
 
@@ -1185,12 +1185,6 @@ def _cross_problems(s: dict) -> list[str]:
                 f"{variance:.3g} m^2 is not positive; allowed: 'mccool' only when roughness.sigma > "
                 f"{math.sqrt(MCCOOL_VARIANCE_CONSTANT) / eta_r:.3g} m, else 'sigma'"
             )
-    solver = s.get("solver")
-    if solver is not None and effects is not None and solver.method == "newton" and effects.cavitation == "jfo":
-        problems.append(
-            "solver.method = 'newton' with effects.cavitation = 'jfo': the one-Newton solver has the Reynolds "
-            "condition and full Sommerfeld so far; allowed: 'nested' with jfo, or cavitation 'reynolds' or 'none'"
-        )
     problems.extend(_rheology_problems(s.get("lubricant"), effects))
     motion = s.get("motion")
     if motion is not None and motion.kind == "table" and motion.table is None:
