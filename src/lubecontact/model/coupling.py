@@ -41,13 +41,15 @@ from lubecontact.physics.flow_factors import ClosedFilmError
 class WarmStart:
     """Where a coupled solve starts (None: from scratch): the cylinder position z (m) and the
     deformation delta (m, (ny, nx) of the model's mesh), and optionally the force stiffness
-    dF/dz (N/m), the cavitated set and the fluid pressure (Pa) of a previous solution."""
+    dF/dz (N/m), the cavitated set, the fluid pressure (Pa) and, with JFO cavitation, the
+    film content theta of a previous solution."""
 
     z: float | None = None
     delta: np.ndarray | None = None
     stiffness: float | None = None
     cavitated: np.ndarray | None = None
     pressure: np.ndarray | None = None
+    content: np.ndarray | None = None
 
 
 @dataclass

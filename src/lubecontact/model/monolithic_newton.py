@@ -244,7 +244,8 @@ def newtonian_step(model: Model) -> bool:
 def projects_pressure(model: Model) -> bool:
     """Whether a line search projects its trial pressures onto p >= 0, the projected Newton
     path (Bertsekas 1982, SIAM J. Control Optim. 20:221): a Newtonian film's time step with
-    cavitation. A direction that carries a region of an inlet across its cavitation boundary
+    Swift-Stieber cavitation (JFO's unknown u is negative where the film cavitates,
+    jfo_outflow.py). A direction that carries a region of an inlet across its cavitation boundary
     at once (10 Pa s at t ~ 1 us: nodes at h/sigma ~ 400 taken from +1.8e-4 to -1.4e-4 of the
     peak pressure by the full step) leaves their linearised pressures below zero, where the
     Fischer-Burmeister residual is 2p; projected they sit at p = 0 with their outflow >= 0,
@@ -252,7 +253,7 @@ def projects_pressure(model: Model) -> bool:
     projected: projected, a steady Newton on Table 1 landed elsewhere within its tolerance,
     the steady start of a Bingham stop stalled, and with the non-monotone search Moes' M = 50
     reference line failed."""
-    return newtonian_step(model) and model.scene.effects.cavitation != "none"
+    return newtonian_step(model) and model.scene.effects.cavitation == "reynolds"
 
 
 def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
@@ -270,7 +271,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
     outside = beyond_the_radius(model, film)
     if outside:
         raise ValueError(outside)
-    nominal = force / float(np.sum(mesh.nodal_area))  # Pa, the load over the mesh's area
+    nominal = nominal_pressure(model)
     contact_pressure = np.zeros(mesh.shape)
     contact_slope = np.zeros(mesh.shape)
     if model.contact is not None:
@@ -299,24 +300,34 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
         # at the trial points of a line search (about four in five linearisations)
         added = squeeze_slope if model.squeeze is not None else None
 
-        def film_slopes(face_content=None):
-            """(dw/dh, dA_ii/dh) of the Newtonian outflow, built when a direction asks; JFO's
-            Couette faces weighted by ``face_content`` (jfo_outflow.py)."""
+        def film_slopes(film_content=None):
+            """(dw/dh, dA_ii/dh) of the Newtonian outflow, built when a direction asks; with
+            JFO (jfo_outflow.py) its Couette faces and a step's squeezed cells weighted by the
+            film content ``film_content`` ((ny, nx), theta)."""
             nodal = (None, None) if face_slopes is not None else fluid_film(model, film, slopes=True)[2:]
+            carried = None if film_content is None else upwind_content(mesh, film_content, scene.operating.speed)
             j_wh, j_sh = outflow_film_jacobian(mesh, pressure, unknown, scene.operating.speed, face_slopes, *nodal,
-                                               face_content=face_content)
+                                               face_content=carried)
             if exterior is not None:
                 j_wh = j_wh + exterior_film_jacobian(unknown, exterior, pressure)
-            return (j_wh if added is None else j_wh + added()), j_sh
+            if added is not None:
+                squeezed = added()
+                j_wh = j_wh + (squeezed if film_content is None else sp.diags(film_content[unknown]) @ squeezed)
+            return j_wh, j_sh
 
         mass_conserving = scene.effects.cavitation == "jfo"
         if mass_conserving:  # the unknown is the universal variable u (jfo_outflow.py)
             variable = pressure.copy()
+            storage = None
+            if model.squeeze is not None:  # a step's cells store theta c: dA (c0 theta c + history)
+                cells = mesh.nodal_area[unknown]
+                storage = (model.squeeze.coefficient * cells * content.value[unknown],
+                           -cells * model.squeeze.history[unknown])
             parts, split = mass_conserving_outflow(mesh, system, h_t, scene.operating.speed, faces, p, nominal,
-                                                   film_slopes)
+                                                   film_slopes, storage)
             pressure[unknown] = split.pressure
             pressure_slope = np.zeros(mesh.shape)
-            pressure_slope[unknown] = split.pressurised
+            pressure_slope[unknown] = split.pressure_slope
         elif grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
             _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)  # nodal dh_T/dh, dk/dh
             parts = yield_stress_outflow(mesh, system, pressure, k, h_t, gap_slope, scene.operating.speed, grease,
@@ -786,8 +797,17 @@ def transferred(coarse: Model, fine: Model, it: Iterate) -> Iterate:
     return Iterate(pressure, delta, it.z)
 
 
+def nominal_pressure(model: Model) -> float:
+    """The load over the mesh's area, Pa: the pressure scale of a sealed cell's outflow and
+    the unit P of JFO's universal variable (linearise)."""
+    return model.scene.operating.force / float(np.sum(model.mesh.nodal_area))
+
+
 def warm_iterate(model: Model, initial: WarmStart) -> Iterate | None:
-    """The iterate of a WarmStart on this mesh (a sweep's previous point), else None."""
+    """The iterate of a WarmStart on this mesh (a sweep's previous point, a time step's
+    predictor), else None; with JFO its film content goes into the universal variable,
+    u = (theta - 1) P where theta < 1 (numerics/jfo_outflow.py): started at theta = 1 instead,
+    the 100 Pa s fretting's step at rest (t = 27 ms) found no descent from a residual of 0.42."""
     shape = model.mesh.shape
     if initial is None or initial.z is None:
         return None
@@ -797,6 +817,9 @@ def warm_iterate(model: Model, initial: WarmStart) -> Iterate | None:
     pressure = np.zeros(shape)
     if initial.pressure is not None and np.shape(initial.pressure) == shape:
         pressure = np.maximum(np.asarray(initial.pressure, dtype=float), 0.0)
+    content = initial.content
+    if model.scene.effects.cavitation == "jfo" and content is not None and np.shape(content) == shape:
+        pressure = np.where(content < 1.0, (content - 1.0) * nominal_pressure(model), pressure)
     return Iterate(pressure, delta, float(initial.z))
 
 
@@ -960,7 +983,8 @@ def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics, con
     if model.contact is None and float(np.min(state.film)) < CLOSED_FILM:  # the smooth film closed: no start
         attempts = cold
     else:
-        attempts = [("from its last state", WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure),
+        attempts = [("from its last state", WarmStart(z=state.z, delta=state.delta, pressure=state.fluid_pressure,
+                                                      content=getattr(state.reynolds, "content", None)),
                      False), *cold]
     why = diagnostics.failure or (f"{diagnostics.iterations} iteration(s) without its deformation change falling below "
                                   f"the tolerance: the last was {diagnostics.deformation_residual:.3g} m")

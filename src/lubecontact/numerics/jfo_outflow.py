@@ -32,17 +32,20 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from lubecontact.numerics.cavitation_jfo import couette_operator, upwind_content
+from lubecontact.numerics.cavitation_jfo import couette_operator
 from lubecontact.numerics.reynolds_jacobian import LinearOutflow
 
 
 @dataclass(frozen=True)
 class UniversalSplit:
     """The pair (p, theta) of the universal variable u at the Reynolds unknowns (module
-    docstring): pressure (Pa), content (1), and which unknowns are on the pressure branch."""
+    docstring) and its slopes: pressure (Pa), content (1), dp/du (1), dtheta/du (1/Pa), and
+    which unknowns are on the pressure branch (u > 0, or unable to cavitate)."""
 
     pressure: np.ndarray
     content: np.ndarray
+    pressure_slope: np.ndarray
+    content_slope: np.ndarray
     pressurised: np.ndarray  # bool
 
 
@@ -54,10 +57,10 @@ def can_cavitate(couette: sp.csr_matrix) -> np.ndarray:
 
 def universal_split(variable: np.ndarray, unit: float, cavitating: np.ndarray) -> UniversalSplit:
     """(p, theta) of the universal variable ``variable`` (Pa, per unknown), ``unit`` P (Pa);
-    ``cavitating``: the unknowns that may cavitate (can_cavitate)."""
+    ``cavitating``: the unknowns that may cavitate (can_cavitate); at u = 0 the cavitated branch."""
     pressurised = (variable > 0.0) | ~cavitating
     return UniversalSplit(np.where(pressurised, variable, 0.0), np.where(pressurised, 1.0, 1.0 + variable / unit),
-                          pressurised)
+                          pressurised * 1.0, ~pressurised / unit, pressurised)
 
 
 def content_field(mesh, unknown: np.ndarray, split: UniversalSplit) -> np.ndarray:
@@ -68,16 +71,23 @@ def content_field(mesh, unknown: np.ndarray, split: UniversalSplit) -> np.ndarra
 
 
 def mass_conserving_outflow(mesh, system, expected_gap, speed, faces, variable: np.ndarray, unit: float,
-                            film_slopes) -> tuple[LinearOutflow, UniversalSplit]:
+                            film_slopes, storage=None) -> tuple[LinearOutflow, UniversalSplit]:
     """The JFO outflow w(u) of the Reynolds unknowns (m^3/s) as a reynolds_jacobian.LinearOutflow
     whose matrix is dw/du (module docstring), and the split (p, theta) of ``variable`` (u, Pa,
     per unknown). ``system``: reynolds.reynolds_system of this film (A and its unknowns);
-    ``film_slopes(content)``: (dw/dh, dA_ii/dh) at the content field (ny, nx), the Couette
-    faces weighted by their upwind content (reynolds_jacobian.outflow_film_jacobian)."""
+    ``film_slopes(content)``: (dw/dh, dA_ii/dh) at the film content ``content`` (ny, nx), the
+    Couette faces weighted by their upwind content and a step's squeezed cells by their own
+    (monolithic_newton.linearise). ``storage`` = (capacity, history) per unknown, m^3/s: a
+    time step's cells hold theta times their content c, and add capacity theta - history to
+    their outflow, as cavitation_jfo.py's hook (BDF: capacity = c0 dA c, history = -dA (c1
+    (theta c)^n + c2 (theta c)^(n-1))); capacity is then part of dw/du on the cavitated branch."""
     couette, inflow = couette_operator(mesh, expected_gap, speed, system.unknown, faces)
-    split = universal_split(variable, unit, can_cavitate(couette))
+    capacity = np.zeros(variable.shape) if storage is None else storage[0]
+    stored = 0.0 if storage is None else storage[1]
+    split = universal_split(variable, unit, can_cavitate(couette) | (capacity > 0.0))
     matrix = system.matrix
-    outflow = matrix @ split.pressure + couette @ split.content + inflow
-    slope = matrix @ sp.diags(split.pressurised * 1.0) + couette @ sp.diags(~split.pressurised / unit)
-    content = upwind_content(mesh, content_field(mesh, system.unknown, split), speed)
+    outflow = matrix @ split.pressure + couette @ split.content + inflow + capacity * split.content - stored
+    slope = matrix @ sp.diags(split.pressure_slope) + couette @ sp.diags(split.content_slope) \
+        + sp.diags(capacity * split.content_slope)
+    content = content_field(mesh, system.unknown, split)
     return LinearOutflow(slope.tocsr(), matrix.diagonal(), outflow, lambda: film_slopes(content)), split

@@ -354,7 +354,9 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) 
 
     Evaluated from the face fluxes q_f = T_f (p_left - p_right) + (U/2) h_T,f dy of the faces
     between a pressurised interior node and a node that is not (boundary or cavitated),
-    independently of the assembled matrix. Compare it with the inlet flux (U/2) h_T dy.
+    independently of the assembled matrix; with mass-conserving cavitation each x face's
+    Couette flux carries the content upwind of it (the solution's face_content,
+    cavitation_jfo.JFOSolution). Compare it with the inlet flux (U/2) h_T dy.
     ``faces`` (percolation.FaceFilm): the film on the faces, as the solve used it.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
@@ -363,7 +365,9 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) 
     p = solution.pressure
     full = interior_nodes(mesh.shape, mesh.line) & ~solution.cavitated
     tx, ty = face_transmissibilities(mesh, coefficient, faces)
-    qx = tx * (p[:, :-1] - p[:, 1:]) + couette_face_flux(mesh, expected_gap, speed, faces)
+    carried = getattr(solution, "face_content", None)
+    couette = couette_face_flux(mesh, expected_gap, speed, faces)
+    qx = tx * (p[:, :-1] - p[:, 1:]) + (couette if carried is None else carried * couette)
     qy = ty * (p[:-1, :] - p[1:, :])
     total = 0.0
     for q, left, right in ((qx, full[:, :-1], full[:, 1:]), (qy, full[:-1, :], full[1:, :])):

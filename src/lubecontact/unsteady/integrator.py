@@ -34,10 +34,11 @@ below NONLINEAR_FRACTION of it at every node (Squeeze.settled, docs/physics.md s
 Where a pocket of the film seals, the state jumps (an impasse of the model): a step over it
 is accepted without the error test, and said (TimeIntegrator.jump_over_impasse).
 
-Cavitation is Swift-Stieber (reynolds.solve_reynolds), as in the steady model: it does not
-conserve mass where a film re-forms. A mass-conserving (JFO) solver replaces it by changing
-``solve_reynolds`` (and ``Squeeze.rate``, which would act on the film content theta h_T);
-this module only supplies dh_T/dt.
+Cavitation is Swift-Stieber (reynolds.solve_reynolds), as in the steady model, which does
+not conserve mass where a film re-forms, or mass-conserving (JFO, effects.cavitation: jfo;
+line contacts, each step one Newton: numerics/jfo_outflow.py), whose cells hold theta times
+their content: the levels then carry theta c (held_content), and the squeeze term
+differentiates that.
 """
 
 from __future__ import annotations
@@ -53,6 +54,7 @@ from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.fluid_film import FLUID_FILM_FLOOR_SIGMAS, squeeze_content
 from lubecontact.model.model import Model, SolveError
 from lubecontact.model.monolithic_newton import dense_step_serves, monolithic_solve, needs_newton, steady_solve
+from lubecontact.numerics.cavitation_jfo import JFOSolution
 from lubecontact.numerics.mesh import build_mesh, mirrored_mesh, rest_mesh
 from lubecontact.numerics.transfer import interpolate_field, spline_along_x
 from lubecontact.unsteady.dynamics import BaseExcitation, Dynamics
@@ -355,14 +357,16 @@ def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
     converges, else the Newton's, else both failures named. Measured on Table 1 stops: the Newton alone
     fails on the 201-node line where the nested solve converges, and the nested alone on
     the 20 N stop and at motion.tolerance 1e-5 (tests/test_hard_cases.py). A contact with
-    mass and spring (Model.load), a grease and solver.method newton have the Newton only.
+    mass and spring (Model.load), a grease, JFO cavitation and solver.method newton have the
+    Newton only.
     On a 2-D mesh (or a line beyond the dense Newton's size) the other way round
     (nested_then_newton): the nested solve is cheaper where it converges."""
-    if model.load is not None or needs_newton(model):  # the nested solve has no F(z), nor a grease
+    # the nested solve has no F(z), nor a grease, nor JFO's stored content theta c
+    if model.load is not None or needs_newton(model) or model.scene.effects.cavitation == "jfo":
         state, diag = monolithic_solve(model, initial, continuation=False)
         if not diag.converged:
             diag = dataclasses.replace(diag, failure=f"one Newton (the only solver of a contact with mass or "
-                                                     f"spring, or of a grease): {diag.failure}")
+                                                     f"spring, of a grease, or of JFO in time): {diag.failure}")
         return state, diag
     if not dense_step_serves(model):
         return nested_then_newton(model, initial, fallback)
@@ -473,14 +477,27 @@ def transferred(level: Level, model: Model) -> Level:
         pressure = interpolate_field(reynolds.pressure, source, target)
         cavitated = interpolate_field(reynolds.cavitated.astype(float), source, target) > 0.5
         pressure[:, 0], cavitated[:, 0] = 0.0, False
-        reynolds = dataclasses.replace(reynolds, pressure=pressure, cavitated=cavitated, factor=None)
+        moved = {"pressure": pressure, "cavitated": cavitated, "factor": None}
+        if isinstance(reynolds, JFOSolution):  # its film content, which the cells hold (held_content)
+            content = np.clip(interpolate_field(reynolds.content, source, target), 0.0, 1.0)
+            content[:, 0] = 1.0
+            moved.update(content=content, face_content=None, unknown=None)
+        reynolds = dataclasses.replace(reynolds, **moved)
     film = film_on(level, model)
     delta = spline_along_x(state.delta, source, target)
     state = dataclasses.replace(state, delta=delta, film=film, reynolds=reynolds)
     rate = None if level.squeeze_rate is None else interpolate_field(level.squeeze_rate, source, target)
-    content = squeeze_content(model, film)
-    return dataclasses.replace(level, state=state, expected_gap=content.value, sealed=content.frozen(), model=model,
-                               squeeze_rate=rate)
+    held, sealed = held_content(model, state)
+    return dataclasses.replace(level, state=state, expected_gap=held, sealed=sealed, model=model, squeeze_rate=rate)
+
+
+def held_content(model: Model, state) -> tuple[np.ndarray, np.ndarray]:
+    """(the content each cell holds, which the squeeze term differentiates in time: its
+    content c (model/fluid_film.squeeze_content), times the film content theta with JFO
+    cavitation; the cells where c is frozen, sealed), at ``state`` (model/model.State)."""
+    content = squeeze_content(model, state.film)
+    theta = getattr(state.reynolds, "content", None)  # JFO's (numerics/cavitation_jfo.JFOSolution)
+    return content.value if theta is None else theta * content.value, content.frozen()
 
 
 def scene_at(scene, speed: float):
@@ -561,12 +578,6 @@ class TimeIntegrator:
         outside = (mesh.x < inside[0] - 1e-9 * mesh.dx) | (mesh.x > inside[-1] + 1e-9 * mesh.dx)
         return float(np.sum((total * mesh.nodal_area)[:, outside])) / self.scene.operating.force
 
-    def _gap(self, model: Model, film: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(the content the squeeze term differentiates in time, each cell's
-        (model/fluid_film.squeeze_content); the cells where it is frozen, sealed)."""
-        content = squeeze_content(model, film)
-        return content.value, content.frozen()
-
     def start(self) -> Level:
         """The steady state at t = 0 (the motion's initial speed). A motion that starts sliding
         backwards (a table whose first speed is negative) starts with its fluid (the steady
@@ -584,7 +595,7 @@ class TimeIntegrator:
         state, diag, _ = steady_solve(model)
         self.coupled_solves += 1
         transient = dataclasses.replace(model, hydrodynamic=bool(self.scene.effects.hydrodynamics))
-        return Level(0.0, self.history.initial_speed(), state, *self._gap(transient, state.film), model, diag)
+        return Level(0.0, self.history.initial_speed(), state, *held_content(transient, state), model, diag)
 
     def step(self, levels: list[Level], t_new: float, order: int, extrapolate: bool = True):
         """Coupled solve at t_new with BDF_order; (level, error/tolerance) or (None, reason).
@@ -619,6 +630,7 @@ class TimeIntegrator:
         if last.state.reynolds is not None:  # the set follows from the pressure (projected_smoothing)
             initial.cavitated = last.state.reynolds.cavitated
             initial.pressure = last.state.reynolds.pressure
+            initial.content = getattr(last.state.reynolds, "content", None)  # JFO's theta
         try:
             state, diag = step_solve(model, initial, self.fallback)
         except SolveError as err:
@@ -630,7 +642,7 @@ class TimeIntegrator:
         fraction = error_fraction([dt] + [lv.time - lv_prev.time for lv, lv_prev in zip(used[::-1], used[::-1][1:])])
         error = step_error(fraction * (state.film - predicted) / model.squeeze.error_weight(state.film),
                            self.scene.motion.error_norm)
-        gap, sealed = self._gap(model, state.film)
+        gap, sealed = held_content(model, state)
         if state.reynolds is not None:
             state.reynolds.factor = None  # LU factors: not needed after the step, megabytes each
         level = Level(t_new, speed, state, gap, sealed, model, diag, order, error, model.squeeze.rate(gap),

@@ -112,10 +112,10 @@ def motion_problems(scene) -> list[str]:
                 f"least {needed:.3g} time steps ({STEPS_PER_PERIOD} a period); allowed: at most {MAX_STEPS} steps, "
                 f"about {MAX_STEPS // STEPS_PER_PERIOD} cycles"
             )
-    if scene.effects.cavitation == "jfo":
+    if scene.effects.cavitation == "jfo" and scene.mesh.ny > 1:
         problems.append(
-            "effects.cavitation = 'jfo': the transient's squeeze term is built on the Reynolds condition so far "
-            "(its film-content history is not yet carried); allowed: 'reynolds' or 'none' with a motion"
+            "effects.cavitation = 'jfo' with a motion on a 2-D mesh: JFO in time is solved by the one Newton, "
+            "which steps line contacts in time so far; allowed: mesh.ny = 1, or 'reynolds' or 'none'"
         )
     if scene.lubricant.rheology != "newtonian" and scene.motion.kind != "steady" and scene.mesh.ny > 1:
         problems.append(
