@@ -244,11 +244,14 @@ CASES = {
                              "converges from its cold start, 0.3 s"),
     # in the loop (bench/HYSTERESIS.md): the cold start and the load continuation stall, and the
     # speed continuation from half the speed converges (monolithic_newton.continuation_paths) to
-    # the contact-carried state, fluid share 0.19 (thirty-fifth session)
+    # the contact-carried state, fluid share 0.19 (thirty-fifth session). Since each Newton runs
+    # first on the universal variable (monolithic_newton.newton, thirty-seventh session) the load
+    # continuation from an eighth of the force converges, to the nested solver's state (fluid
+    # load 15.58 N of the 20), in 23 s
     "newton_lift_off_20_N_0100": (False, {"solver.method": "newton", "operating.force": 20.0, "operating.speed": 0.1},
-                                  "converges by speed continuation from half the speed, 9 s before its "
-                                  "stalled Newtons retried on the open film's outflow scale, 27 s since (a longer "
-                                  "alarm, LONGER_BUDGET: the load path creeps to 0.999 of the force first)"),
+                                  "converges by load continuation from an eighth of the force, 23 s (a longer alarm, "
+                                  "LONGER_BUDGET); by the speed path, 9 s before its stalled Newtons retried on the "
+                                  "open film's outflow scale, 27 s since"),
     # just above the 51 x 51 loop (bench/HYSTERESIS.md: one state there, fluid share 0.82,
     # which the nested solver reaches): the cold start and every path stalled on the cells' own
     # outflow scales (load at 0.68 of the force, speed at 0.92 of it) until a stalled Newton
@@ -352,7 +355,7 @@ def test_hard_case_converges_and_says_so(case, outcomes):
     if CASES[case][1].get("effects.asperity_contact") is False:  # a smooth contact stands on a film (Moes: 6-21 nm)
         assert ds["min_film_thickness"].item() > 1e-9
     if case == "newton_lift_off_20_N_0100":  # reached by a path: the note says which, since the path decides the state
-        assert "one Newton reached this point by speed continuation from 0.5 of the speed" in ds.attrs["notes"]
+        assert "one Newton reached this point by load continuation from 0.125 of the force" in ds.attrs["notes"]
     if case == "fig12_30_N_2d_finish":  # the default solver says which solver converged it, and how
         assert "the nested solver stopped" in ds.attrs["notes"] and "one Newton from a cold start" in ds.attrs["notes"]
 
