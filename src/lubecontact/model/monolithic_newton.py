@@ -21,8 +21,8 @@ by its diagonal to a pressure, phi_FB the Fischer-Burmeister function
 it is at least semismooth, so Newton's method applies to the whole residual at once: no
 active set inside a force balance inside a deformation fixed point.
 
-A Newtonian film's Reynolds condition is first written in the universal variable u instead
-(newton, universal_applies): p = max(u, 0) and R_p = w(p)/A_ii + min(u, 0), zero exactly
+A steady Newtonian film's Reynolds condition is first written in the universal variable u
+instead (newton, universal_applies): p = max(u, 0) and R_p = w(p)/A_ii + min(u, 0), zero exactly
 where u > 0 with w = 0, or u <= 0 with p = 0 and w = -u A_ii >= 0: the same complementarity,
 piecewise linear in u (generalised Jacobian S A/A_ii + I - S, S = diag(u > 0)), with no
 smoothing; where that Newton fails, the Fischer-Burmeister one follows from the same start.
@@ -189,9 +189,9 @@ class Linearisation:
     load_weight: np.ndarray | None = None
     load_film_slope: np.ndarray | None = None
     outflow_floor: np.ndarray | None = None  # (ny, nx) floor of the outflow scale, m^3/(Pa s) (linearise)
-    # with mass-conserving cavitation the pressure unknown is the universal variable u (Pa,
-    # (ny, nx), jfo_outflow.py) and dp/du at every node (1 on the pressure branch, else 0);
-    # None: the unknown is the pressure itself
+    # where the pressure unknown is a universal variable u (Pa, (ny, nx): JFO's,
+    # jfo_outflow.py, or the Reynolds condition's, ``universal``), u and dp/du at every node
+    # (1 on the pressure branch, else 0); None: the unknown is the pressure itself
     variable: np.ndarray | None = None
     pressure_slope: np.ndarray | None = None
     universal: bool = False  # the Reynolds condition in the universal variable (linearise)
@@ -218,13 +218,13 @@ class Linearisation:
         return self.jacobians[1]
 
     def iterate(self) -> Iterate:
-        """The iterate this linearisation was taken at (its pressure unknown: p, or u with JFO)."""
+        """The iterate this linearisation was taken at (its pressure unknown: p, or u)."""
         state = self.state
         return Iterate(state.fluid_pressure if self.variable is None else self.variable, state.delta, state.z)
 
     def physical(self, step: np.ndarray) -> np.ndarray:
         """The pressure change (Pa, (ny, nx)) of a change ``step`` of the pressure unknown:
-        ``step`` itself, or with JFO its pressure branch (pressure_slope)."""
+        ``step`` itself, or a universal variable's pressure branch (pressure_slope)."""
         return step if self.pressure_slope is None else self.pressure_slope * step
 
     def merit(self) -> float:
@@ -640,10 +640,15 @@ def measures_sealed_cells(model: Model) -> bool:
 
 
 def universal_applies(model: Model) -> bool:
-    """Whether ``model``'s Reynolds condition can be written in the universal variable
-    (linearise): a Newtonian film with Swift-Stieber cavitation (a grease's outflow is not
-    linear in the pressure, and its Jacobian keeps the Fischer-Burmeister rows)."""
-    return model.hydrodynamic and model.scene.effects.cavitation == "reynolds" and yield_stress_law(model) is None
+    """Whether ``model``'s Reynolds condition is written in the universal variable first
+    (linearise, newton): a steady Newtonian film with Swift-Stieber cavitation. A grease's
+    outflow is not linear in the pressure, and its Jacobian keeps the Fischer-Burmeister rows.
+    A time step keeps them too, with its projected line search (projects_pressure): with the
+    universal variable in the steps, the Table 1 line stops of tests/test_return_stroke.py,
+    forward and mirrored, drifted apart by 1.8e-3 in film and 1.2e-3 in reconnect time
+    (their tolerance 1e-3; thirty-seventh session)."""
+    return (model.hydrodynamic and model.squeeze is None and model.scene.effects.cavitation == "reynolds"
+            and yield_stress_law(model) is None)
 
 
 def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
@@ -654,7 +659,7 @@ def newton(model: Model, start: Iterate, tolerance: float, max_iterations: int):
     the figures' 854 points by one Newton (config/newton.yaml, thirty-seventh session): the
     Fischer-Burmeister function alone failed at 2 (Fig. 4 with alpha fixed, the honed
     surface), the universal variable alone at 3 others (Fig. 12 at 30 N), the two in turn at
-    none, and the sum of the points' solve times fell from 621 to 581 s."""
+    none, and the sum of the points' solve times fell from 621 to 547 s."""
     if not universal_applies(model):
         return newton_on(model, start, tolerance, max_iterations, universal=False)
     first = newton_on(model, start, tolerance, max_iterations, universal=True)
