@@ -48,17 +48,17 @@ def two_contacts(nx):
 
 
 def outflow(mesh, h, k, variable, unit=UNIT):
-    """The JFO outflow of ``variable`` at film ``h`` with the film slopes of a smooth film."""
+    """The JFO outflow of ``variable`` at film ``h`` with the film slopes of a smooth film
+    (sliding, every unknown can cavitate: p = max(u, 0))."""
     system = reynolds_system(mesh, h, k, U)
     gap_slope, coefficient_slope = np.ones_like(h), 3.0 * h**2 / (12 * MU)
+    pressure = pressure_field(mesh, system.unknown, np.maximum(variable, 0.0))
 
     def film_slopes(content):
-        return outflow_film_jacobian(mesh, pressure_field(mesh, system.unknown, split_pressure[0]), system.unknown, U,
-                                     None, gap_slope, coefficient_slope, face_content=upwind_content(mesh, content, U))
+        return outflow_film_jacobian(mesh, pressure, system.unknown, U, None, gap_slope, coefficient_slope,
+                                     face_content=upwind_content(mesh, content, U))
 
-    split_pressure = [None]
     parts, split = mass_conserving_outflow(mesh, system, h, U, None, variable, unit, film_slopes)
-    split_pressure[0] = split.pressure
     return parts, split, system
 
 

@@ -288,6 +288,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
     pressure = np.zeros(mesh.shape)
     r_p = exact = np.zeros(0)
     unknown = reynolds = h_t = k = faces = face_slopes = slopes = parts = content = variable = pressure_slope = None
+    pressurised = None  # with a universal variable u, the unknowns on its pressure branch (u > 0)
     if model.hydrodynamic:
         h_t, k = fluid_film(model, film)
         faces, face_slopes = fluid_faces(model, film)
@@ -334,9 +335,7 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
                            -cells * model.squeeze.history[unknown])
             parts, split = mass_conserving_outflow(mesh, system, h_t, scene.operating.speed, faces, p, nominal,
                                                    film_slopes, storage)
-            pressure[unknown] = split.pressure
-            pressure_slope = np.zeros(mesh.shape)
-            pressure_slope[unknown] = split.pressure_slope
+            pressure[unknown], pressurised = split.pressure, split.pressurised
         elif grease is not None:  # the coefficient depends on the pressure (docs/physics.md section 21)
             _, _, gap_slope, coefficient_slope = fluid_film(model, film, slopes=True)  # nodal dh_T/dh, dk/dh
             parts = yield_stress_outflow(mesh, system, pressure, k, h_t, gap_slope, scene.operating.speed, grease,
@@ -347,8 +346,6 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
             pressure[unknown] = np.where(pressurised, p, 0.0)
             parts = LinearOutflow((system.matrix @ sp.diags(pressurised * 1.0)).tocsr(), system.matrix.diagonal(),
                                   system.matrix @ pressure[unknown] - system.rhs, film_slopes)
-            pressure_slope = np.zeros(mesh.shape)
-            pressure_slope[unknown] = pressurised
         else:
             parts = LinearOutflow(system.matrix, system.matrix.diagonal(), system.matrix @ p - system.rhs, film_slopes)
         if newtonian_step(model):  # a step's sealed cells (integrator.Squeeze.outflow_scale_floor)
@@ -369,17 +366,18 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
         # cavitated: the outflow, not the pressure, is the positive partner (a sealed node with
         # p = 0 and no outflow is full of fluid)
         cavitated = np.zeros(mesh.shape, dtype=bool)
+        if pressurised is not None:  # dp/du: 1 on the pressure branch, 0 where u cavitates
+            pressure_slope = np.zeros(mesh.shape)
+            pressure_slope[unknown] = pressurised
+            cavitated[unknown] = ~pressurised
+        elif scene.effects.cavitation != "none":
+            cavitated[unknown] = w / scale > p
         if mass_conserving:
-            cavitated[unknown] = ~split.pressurised
             theta = content_field(mesh, unknown, split)
             reynolds = JFOSolution(pressure=pressure, content=theta, cavitated=cavitated, iterations=0, residual=0.0,
                                    converged=True, face_content=upwind_content(mesh, theta, scene.operating.speed),
                                    unknown=unknown)
         else:
-            if universal:
-                cavitated[unknown] = ~pressurised
-            elif scene.effects.cavitation != "none":
-                cavitated[unknown] = w / scale > p
             reynolds = ReynoldsSolution(pressure=pressure, cavitated=cavitated, iterations=0, residual=0.0,
                                         converged=True)
     area = mesh.nodal_area
@@ -770,7 +768,7 @@ def line_search(model: Model, it: Iterate, lin: Linearisation, direction, refere
     longest step tried, or None where it left the model)."""
     d_p, d_delta, dz, _ = direction
     step = longest_film_step(model, lin, d_delta, dz)
-    projected = projects_pressure(model) and not lin.universal
+    projected = projects_pressure(model)
     merit = reference
     first = None
     while step >= SMALLEST_STEP:

@@ -39,13 +39,11 @@ from lubecontact.numerics.reynolds_jacobian import LinearOutflow
 @dataclass(frozen=True)
 class UniversalSplit:
     """The pair (p, theta) of the universal variable u at the Reynolds unknowns (module
-    docstring) and its slopes: pressure (Pa), content (1), dp/du (1), dtheta/du (1/Pa), and
-    which unknowns are on the pressure branch (u > 0, or unable to cavitate)."""
+    docstring): pressure (Pa), content (1), and which unknowns are on the pressure branch
+    (u > 0, or unable to cavitate), where dp/du = 1 and dtheta/du = 0 (elsewhere 0 and 1/P)."""
 
     pressure: np.ndarray
     content: np.ndarray
-    pressure_slope: np.ndarray
-    content_slope: np.ndarray
     pressurised: np.ndarray  # bool
 
 
@@ -60,7 +58,7 @@ def universal_split(variable: np.ndarray, unit: float, cavitating: np.ndarray) -
     ``cavitating``: the unknowns that may cavitate (can_cavitate); at u = 0 the cavitated branch."""
     pressurised = (variable > 0.0) | ~cavitating
     return UniversalSplit(np.where(pressurised, variable, 0.0), np.where(pressurised, 1.0, 1.0 + variable / unit),
-                          pressurised * 1.0, ~pressurised / unit, pressurised)
+                          pressurised)
 
 
 def content_field(mesh, unknown: np.ndarray, split: UniversalSplit) -> np.ndarray:
@@ -87,7 +85,8 @@ def mass_conserving_outflow(mesh, system, expected_gap, speed, faces, variable: 
     split = universal_split(variable, unit, can_cavitate(couette) | (capacity > 0.0))
     matrix = system.matrix
     outflow = matrix @ split.pressure + couette @ split.content + inflow + capacity * split.content - stored
-    slope = matrix @ sp.diags(split.pressure_slope) + couette @ sp.diags(split.content_slope) \
-        + sp.diags(capacity * split.content_slope)
+    content_slope = ~split.pressurised / unit  # dtheta/du
+    slope = matrix @ sp.diags(split.pressurised * 1.0) + couette @ sp.diags(content_slope) \
+        + sp.diags(capacity * content_slope)
     content = content_field(mesh, system.unknown, split)
     return LinearOutflow(slope.tocsr(), matrix.diagonal(), outflow, lambda: film_slopes(content)), split
