@@ -25,9 +25,16 @@ STRUCK = {**DRY_LINE, "motion.kind": "steady", "motion.mass": MASS, "motion.vibr
           "motion.tolerance": 1e-6}
 
 
-def contact_stiffness() -> float:
-    """-dF/dz of the dry contact, N/m, by a central difference of two steady solves."""
-    z = [lc.solve(lc.load_scene(TABLE1, {**DRY_LINE, "operating.force": f}))["separation"].item() for f in (4.95, 5.05)]
+# the line, and a 2-D mesh whose steps' reduced systems GMRES solves (measured within 0.5 and
+# 0.6 % of sqrt(k/m) there, 1.1 and 1.5 s a run)
+MESHES = {"line": {}, "21 x 11": {"mesh.nx": 21, "mesh.ny": 11}}
+
+
+def contact_stiffness(mesh: dict) -> float:
+    """-dF/dz of the dry contact on ``mesh`` (overrides), N/m, by a central difference of two
+    steady solves."""
+    z = [lc.solve(lc.load_scene(TABLE1, {**DRY_LINE, **mesh, "operating.force": f}))["separation"].item()
+         for f in (4.95, 5.05)]
     return 0.1 / (z[0] - z[1])
 
 
@@ -45,15 +52,17 @@ def ringing_period(series) -> float:
 
 @pytest.fixture(scope="module")
 def stiffness():
-    return contact_stiffness()
+    return {name: contact_stiffness(mesh) for name, mesh in MESHES.items()}
 
 
+@pytest.mark.parametrize("mesh", MESHES)
 @pytest.mark.parametrize("spring_ratio", [0.0, 1.0])
-def test_struck_dry_contact_rings_at_sqrt_k_over_m(stiffness, spring_ratio):
-    spring = spring_ratio * stiffness
-    series = lc.transient(lc.load_scene(TABLE1, {**STRUCK, "motion.spring_stiffness": spring}), progress=False)
+def test_struck_dry_contact_rings_at_sqrt_k_over_m(stiffness, mesh, spring_ratio):
+    spring = spring_ratio * stiffness[mesh]
+    series = lc.transient(lc.load_scene(TABLE1, {**STRUCK, **MESHES[mesh], "motion.spring_stiffness": spring}),
+                          progress=False)
     assert series["converged"].item() == 1, series.attrs["notes"]
-    expected = 2.0 * math.pi * math.sqrt(MASS / (stiffness + spring))
+    expected = 2.0 * math.pi * math.sqrt(MASS / (stiffness[mesh] + spring))
     assert ringing_period(series) == pytest.approx(expected, rel=0.01)
 
 
@@ -124,8 +133,6 @@ def test_dynamics_keys_keep_old_hashes_and_bad_ones_are_refused():
     assert lc.load_scene(TABLE1, {"motion.kind": "stop", "motion.mass": 0.0}).hash == stop.hash
     with pytest.raises(lc.SceneError, match="motion.mass = -1"):
         lc.load_scene(TABLE1, {"motion.mass": -1})
-    with pytest.raises(lc.SceneError, match="line contacts"):
-        lc.transient(lc.load_scene(TABLE1, {"motion.kind": "stop", "motion.mass": 1e-4}), progress=False)
     with pytest.raises(lc.SceneError, match="needs motion.mass > 0"):
         lc.transient(lc.load_scene(TABLE1, {"mesh.ny": 1, "motion.vibration": "sine"}), progress=False)
     # the converse, found by a hostile run (thirtieth session): an acceleration with no vibration was ignored

@@ -28,7 +28,7 @@ from lubecontact.numerics.mesh import Mesh
 from lubecontact.numerics.reynolds import reynolds_system
 from lubecontact.numerics.reynolds_jacobian import outflow_film_jacobian
 from lubecontact.unsteady.integrator import TimeIntegrator
-from lubecontact.unsteady.motion import SpeedHistory, motion_problems
+from lubecontact.unsteady.motion import SpeedHistory
 
 pytestmark = pytest.mark.filterwarnings("error")
 
@@ -259,24 +259,26 @@ def test_a_jfo_time_step_is_the_active_set_solvers_step_at_its_film():
     np.testing.assert_allclose(state.reynolds.content, truth.content, rtol=0, atol=1e-5)
 
 
-def test_a_rough_jfo_stop_reconnects_and_its_full_film_volume_balance_closes():
-    """Table 1 as a rigid rough line stopped from 1 m/s: every step's full film balances its
+# a rigid rough stop from 1 m/s: (mesh, bound on the reconnect time's distance to the Reynolds
+# condition's); on 21 x 11 each step is one Newton as on the line (rigid, so without GMRES),
+# and with side leakage the ruptured film refills otherwise than on the line (measured 1.8 %
+# on the line, 4.3 % on 21 x 11)
+RIGID_STOPS = {"line 31": ({"mesh.ny": 1, "mesh.nx": 31}, 0.05), "21 x 11": ({"mesh.ny": 11, "mesh.nx": 21}, 0.1)}
+
+
+@pytest.mark.parametrize("mesh", RIGID_STOPS)
+def test_a_rough_jfo_stop_reconnects_and_its_full_film_volume_balance_closes(mesh):
+    """Table 1 rigid stopped from 1 m/s: every step's full film balances its
     volume change by its face fluxes (series.volume_balance, independent of the assembled
-    system; measured 5e-6, the one Newton's tolerance: a Swift-Stieber step
+    system; measured 5e-6 on both meshes, the one Newton's tolerance: a Swift-Stieber step
     is polished by the nested solve to round-off), and with one contact, whose film ruptures
-    once, it reconnects within 5 % of the Reynolds condition's run (measured 2 %)."""
+    once, it reconnects near the Reynolds condition's run (RIGID_STOPS)."""
+    overrides, bound = RIGID_STOPS[mesh]
     stop = {"operating.speed": 1.0, "motion.kind": "stop", "motion.ramp": 1e-3, "motion.duration": 0.05,
-            "mesh.ny": 1, "mesh.nx": 31, "effects.elastic_deformation": False, "motion.tolerance": 1e-4,
-            "motion.mesh_error_bar": False}
+            "effects.elastic_deformation": False, "motion.tolerance": 1e-4, "motion.mesh_error_bar": False,
+            **overrides}
     jfo = lc.transient(lc.load_scene(TABLE1, {**stop, "effects.cavitation": "jfo"}))
     reynolds = lc.transient(lc.load_scene(TABLE1, stop))
     assert jfo["converged"].item() == 1 and np.all(jfo["step_converged"].values == 1)
     assert np.max(np.abs(jfo["volume_balance"].values)) < 1e-4
-    assert jfo["reconnect_time"].item() == pytest.approx(reynolds["reconnect_time"].item(), rel=0.05)
-
-
-def test_jfo_in_time_is_refused_on_a_2d_mesh_only():
-    refused = motion_problems(lc.load_scene(TABLE1, {"motion.kind": "stop", "effects.cavitation": "jfo"}))
-    assert any("JFO in time is solved by the one Newton" in problem for problem in refused)
-    assert not motion_problems(lc.load_scene(TABLE1, {"motion.kind": "stop", "effects.cavitation": "jfo",
-                                                      "mesh.ny": 1}))
+    assert jfo["reconnect_time"].item() == pytest.approx(reynolds["reconnect_time"].item(), rel=bound)
