@@ -254,11 +254,12 @@ def test_a_kept_preconditioner_gives_the_dense_newton_direction_and_one_that_fai
         np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-6 * np.max(np.abs(b)))
 
 
-def scaled_residual(lin: mn.Linearisation) -> np.ndarray:
-    """The residual as the merit weighs it (Linearisation.merit): p by p_s, films by h_s."""
-    parts = [lin.r_p / lin.pressure_scale, [lin.r_z / lin.film_scale]]
+def scaled_residual(lin: mn.Linearisation, scales: mn.Linearisation) -> np.ndarray:
+    """``lin``'s residual as the merit weighs it (Linearisation.merit), p by p_s and films by
+    h_s of ``scales`` (p_s moves with the iterate: a finite difference holds it fixed)."""
+    parts = [lin.r_p / scales.pressure_scale, [lin.r_z / scales.film_scale]]
     if lin.r_delta is not None:
-        parts.append((lin.r_delta / lin.film_scale).ravel())
+        parts.append((lin.r_delta / scales.film_scale).ravel())
     return np.concatenate([np.ravel(part) for part in parts])
 
 
@@ -285,8 +286,8 @@ def test_a_krylov_step_meets_the_inexact_newton_condition_on_the_whole_residual(
         d_p, d_delta, dz, _ = mn.newton_direction(model, lin, eta)
         moved = mn.linearise(model, mn.Iterate(it.pressure + eps * d_p, it.delta + eps * d_delta, it.z + eps * dz),
                              lin.smoothing)
-        residual = scaled_residual(lin)
-        linearised = residual + (scaled_residual(moved) - residual) / eps
+        residual = scaled_residual(lin, lin)
+        linearised = residual + (scaled_residual(moved, lin) - residual) / eps
         assert np.linalg.norm(linearised) <= 1.01 * eta * np.linalg.norm(residual)
         checked += 1
     assert checked >= 5
