@@ -204,6 +204,9 @@ class Linearisation:
     variable: np.ndarray | None = None
     pressure_slope: np.ndarray | None = None
     universal: bool = False  # the Reynolds condition in the universal variable (linearise)
+    # each Reynolds cell's outflow left over, m^3/s: its scale times its unsmoothed R_p
+    # (a time step's own test on it, converged); None without a fluid
+    outflow_error: np.ndarray | None = None
 
     def rebranched(self, slopes: tuple) -> "Linearisation":
         """The same residual with J_pp and J_ph weighted by other Fischer-Burmeister slopes
@@ -400,14 +403,16 @@ def linearise(model: Model, it: Iterate, smoothing: float = 0.0,
     scale_h = film_scale(model)
     r_delta = None if model.deformation is None else it.delta - model.deformation(total)
     pressure_scale = max(float(np.max(total)), nominal)
+    outflow_error = None
     if reynolds is not None:
         reynolds.residual = float(np.max(np.abs(exact), initial=0.0)) / pressure_scale
+        outflow_error = parts.scale * exact
     target, load_slope = (force, 0.0) if model.load is None else model.load.force(it.z)
     load_weight, load_film_slope = fluid_load_slopes(model, state)
     return Linearisation(state, r_p, r_delta, scale_h * (state.total_force - target) / force, unknown, contact_slope,
                          pressure_scale, scale_h, smoothing, load_slope, slopes, parts, load_weight,
                          np.zeros(mesh.shape) if load_film_slope is None else load_film_slope, outflow_floor,
-                         variable, pressure_slope, universal)
+                         variable, pressure_slope, universal, outflow_error)
 
 
 def newton_direction(model: Model, lin: Linearisation, forcing: float, influence: np.ndarray | None = None,
@@ -625,6 +630,9 @@ def converged(model: Model, lin: Linearisation, tolerance: float, stiffness: flo
         imbalance = lin.r_z * model.scene.operating.force / lin.film_scale  # N
         force_ok = model.squeeze.settled_position(imbalance / (stiffness - lin.load_slope))
     reynolds_ok = lin.state.reynolds is None or lin.state.reynolds.residual <= tolerance
+    if reynolds_ok and newtonian_step(model) and lin.outflow_error is not None:
+        reynolds_ok = model.squeeze.settled_outflow(lin.outflow_error, model.mesh.nodal_area[lin.unknown],
+                                                    lin.state.film[lin.unknown])
     if not reynolds_ok and stalled and newtonian_step(model):
         reynolds_ok = model.squeeze.settled_pressure(lin.state.reynolds.residual)
     deformation_ok = True

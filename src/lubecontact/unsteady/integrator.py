@@ -152,6 +152,18 @@ class Squeeze:
         film and force tests met, at 1.3e-6 of the peak pressure."""
         return residual <= NONLINEAR_FRACTION * self.tolerance
 
+    def settled_outflow(self, outflow: np.ndarray, cell_area: np.ndarray, film: np.ndarray) -> bool:
+        """Whether each cell's outflow left over by a Newton (m^3/s: its scale times its
+        complementarity residual, model/monolithic_newton.Linearisation.outflow_error) would
+        move its film over the step, outflow / (c0 dA), by less than NONLINEAR_FRACTION of the
+        step's error weight: the step's own test on the Reynolds residual, as on the film
+        (settled). The steady test alone (solver.tolerance times the peak pressure p_s) let
+        cells at the cavitation boundary, with p ~ 2e-6 p_s, keep an outflow that left the
+        face-flux volume balance (series.volume_balance) 0.39 off at a step of a rough 2-D
+        stop (bench/EXPERIMENTS.md, thirty-eighth session)."""
+        return bool(np.all(np.abs(outflow) <= NONLINEAR_FRACTION * self.coefficient * cell_area
+                           * self.error_weight(film)))
+
     def outflow_scale_floor(self, cell_area: np.ndarray, pressure: float) -> np.ndarray:
         """The smallest scale (m^3/(Pa s)) by which the one Newton divides a cell's outflow
         in its complementarity residual (model/monolithic_newton.py): c0 dA h_s / p, the
