@@ -588,7 +588,7 @@ class SolverSettings(_Section):
     method: str = _field(
         "nested", _Choice(("nested", "newton")),
         "nested: force balance inside a deformation fixed point (model/coupling.py); newton: one semismooth "
-        "Newton on the whole residual (model/monolithic_newton.py, steady solves)",
+        "Newton on the whole residual (model/monolithic_newton.py), steady and at every time step",
     )
 
     def to_dict(self):

@@ -36,7 +36,7 @@ is accepted without the error test, and said (TimeIntegrator.jump_over_impasse).
 
 Cavitation is Swift-Stieber (reynolds.solve_reynolds), as in the steady model, which does
 not conserve mass where a film re-forms, or mass-conserving (JFO, effects.cavitation: jfo;
-line contacts, each step one Newton: numerics/jfo_outflow.py), whose cells hold theta times
+each step one Newton: numerics/jfo_outflow.py), whose cells hold theta times
 their content: the levels then carry theta c (held_content), and the squeeze term
 differentiates that.
 """
