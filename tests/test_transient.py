@@ -645,18 +645,6 @@ def test_a_newton_only_steps_volume_balance_closes_to_the_step_tolerance():
     assert np.max(np.abs(series["volume_balance"].values)) < 1e-4
 
 
-def test_one_newton_takes_the_first_steps_of_a_2d_stop_without_rejections():
-    """The Table 1 stop on 21 x 21 with one Newton a step, to 0.1 ms: at most two rejected
-    steps (measured none in 10 steps). While GMRES stopped relative to the reduced system's
-    right-hand side, the Newton found no descent from the fifth step on and 324 steps were
-    rejected by 10 us (monolithic_newton.GMRES_FORCING); the run stops at 20 rejections."""
-    scene = lc.load_scene(TABLE1, {"mesh.nx": 21, "mesh.ny": 21, "operating.speed": 1.0, "motion.kind": "stop",
-                                   "motion.ramp": 1e-3, "solver.method": "newton"})
-    runner = integrator.TimeIntegrator(scene, SpeedHistory.from_scene(scene))
-    levels, failure = runner.run(until=lambda level: level.time >= 1e-4 or runner.rejected > 20)
-    assert not failure and levels[-1].time >= 1e-4 and runner.rejected <= 2
-
-
 def test_a_grease_in_time_is_refused_on_a_2d_mesh_only():
     """Its Newton stalls on the plug's kinks step after step on 2-D meshes (docs/physics.md
     section 21): refused, saying why and what is allowed; the line steps it."""
