@@ -115,7 +115,7 @@ def motion_problems(scene) -> list[str]:
     if scene.lubricant.rheology != "newtonian" and scene.motion.kind != "steady" and scene.mesh.ny > 1:
         problems.append(
             f"lubricant.rheology = {scene.lubricant.rheology!r} with a motion on a 2-D mesh: a grease's time steps "
-            "are one Newton each, which stalls on the plug's kinks at step after step there (the Bingham connector's "
+            "are one Newton each, which stalls step after step there (the Bingham connector's "
             "stop took 2 min on 21 x 21 and passed only 0.8 ms in 7 min on 51 x 51); allowed: mesh.ny = 1, or a "
             "'newtonian' lubricant"
         )
