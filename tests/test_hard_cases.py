@@ -31,11 +31,11 @@ BUDGET = 30  # s of wall clock per case; each measured at 0.5-17 s on the shared
 # of CPU alone (105 steps and a jump; 22 s with a monotone line search); the 1 Pa s fretting
 # under 20 N runs in 15 s (191 steps, 5 jumps over impasses), the 10 Pa s one in 21-23 s (7
 # jumps); their alarm still stops a run that hangs. The 20 N grease stop runs on its 2-D mesh
-# for 83 s (its case below), and two steady one-Newton points near lift-off by continuation in
-# 22-26 s (theirs)
+# for 83 s (its case below), two steady one-Newton points near lift-off by continuation in
+# 22-26 s (theirs), and Fig. 12's 2-D finish in 12.6-13.2 s alone, past 30 s once in CI
 LONGER_BUDGET = {"fretting_stiff_grease": 60, "fretting_stiff_grease_51_nodes": 60, "fretting_1_Pa_s_20_N_51_nodes": 60,
                  "fretting_10_Pa_s_20_N_51_nodes": 60, "grease_stop_20_N": 150,
-                 "newton_lift_off_20_N_0100": 60, "newton_10_N_0063": 60}
+                 "newton_lift_off_20_N_0100": 60, "newton_10_N_0063": 60, "fig12_30_N_2d_finish": 60}
 QUICK = {"mesh.ny": 1, "solver.max_iterations": 20}
 # a smooth elastic line contact on a fixed domain (tests/test_lubricated.py), at Moes' M = 13 and 23
 SOFT_FILM = {"effects.asperity_contact": False, "mesh.ny": 1, "mesh.nx": 401, "mesh.x_min": -2.5e-4, "mesh.x_max": 1e-4}
@@ -289,7 +289,8 @@ CASES = {
     # session (monolithic_newton.finished_by_newton), here by load continuation
     "fig12_30_N_2d_finish": (False, {"geometry.radius": 0.0025, "operating.force": 30.0, "operating.speed": 2.15,
                                      "mesh.nx": 31, "mesh.ny": 21},
-                             "converges by a cold Newton with load continuation after the nested solve stops, 9 s"),
+                             "converges by a cold Newton with load continuation after the nested solve stops, "
+                             "12.6-13.2 s alone (a longer alarm: beside another case in CI it ran past 30 s)"),
 }
 
 
