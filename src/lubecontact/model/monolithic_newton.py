@@ -229,6 +229,13 @@ class Linearisation:
         """d R_p / d h at every node (sparse)."""
         return self.jacobians[1]
 
+    @cached_property
+    def j_pp_factors(self):
+        """SuperLU factors of J_pp (minimum degree on A + A^T), None without Reynolds unknowns;
+        factorised once per linearisation, so a second direction at the same iterate
+        (newton_iteration's ``whole``) reuses them."""
+        return splu(self.j_pp, permc_spec="MMD_AT_PLUS_A") if self.j_pp is not None and self.j_pp.shape[0] else None
+
     def iterate(self) -> Iterate:
         """The iterate this linearisation was taken at (its pressure unknown: p, or u)."""
         state = self.state
@@ -426,7 +433,7 @@ def newton_direction(model: Model, lin: Linearisation, forcing: float, influence
     area = lin.load_weight  # dF/dp: the nodal areas (with the far inlet's weight)
     force = model.scene.operating.force
     weight = lin.film_scale / force
-    lu = splu(lin.j_pp, permc_spec="MMD_AT_PLUS_A") if lin.j_pp is not None and lin.j_pp.shape[0] else None
+    lu = lin.j_pp_factors
 
     def pressure_response(dh):
         """Change of the fluid pressure (ny, nx) for a film change dh (ny, nx), R_p held."""
