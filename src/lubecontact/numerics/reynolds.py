@@ -51,7 +51,7 @@ import scipy.sparse as sp
 from lubecontact.numerics.linear_algebra import BlockInverse
 from lubecontact.numerics.projected_smoothing import smoothed_cavitated_set
 from lubecontact.numerics.transfer import coarser_mesh, interpolate_field
-from lubecontact.physics.percolation import FaceFilm
+from lubecontact.physics.percolation import FaceFilm, face_films
 
 # Hysteresis of the active-set update, relative to the scales of p and w: a node changes
 # side only when its multiplier or pressure is clearly of the wrong sign, so round-off near
@@ -348,7 +348,7 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     )
 
 
-def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) -> float:
+def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None, reduction=None) -> float:
     """Net volumetric outflow of the full-film region, m^3/s: through the domain boundary plus
     into the cavitated region. Zero for a mass-conserving solution.
 
@@ -358,6 +358,9 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) 
     Couette flux carries the content upwind of it (the solution's face_content,
     cavitation_jfo.JFOSolution). Compare it with the inlet flux (U/2) h_T dy.
     ``faces`` (percolation.FaceFilm): the film on the faces, as the solve used it.
+    ``reduction(G, s)``: a grease's reduction factor of the Poiseuille term at the face
+    gradients G (Pa/m, along the face normal) and face contents s (m, the mean of the two
+    nodes' h_T; numerics/yield_stress_reynolds.reduction_factor), T_f r_f in place of T_f.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
@@ -365,6 +368,10 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None) 
     p = solution.pressure
     full = interior_nodes(mesh.shape, mesh.line) & ~solution.cavitated
     tx, ty = face_transmissibilities(mesh, coefficient, faces)
+    if reduction is not None:
+        sx, sy = face_films(expected_gap)
+        tx = tx * reduction(np.diff(p, axis=1) / mesh.dx, sx)
+        ty = ty * reduction(np.diff(p, axis=0) / mesh.dy, sy)
     carried = getattr(solution, "face_content", None)
     couette = couette_face_flux(mesh, expected_gap, speed, faces)
     qx = tx * (p[:, :-1] - p[:, 1:]) + (couette if carried is None else carried * couette)

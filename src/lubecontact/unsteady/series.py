@@ -11,9 +11,11 @@ import xarray as xr
 
 from lubecontact.io.case_schema import SCALARS as CASE
 from lubecontact.io.version import package_version
+from lubecontact.model.fluid_film import yield_stress_law
 from lubecontact.model.outputs import point_outputs
 from lubecontact.model.validity import assess
 from lubecontact.numerics.reynolds import boundary_flux, interior_nodes
+from lubecontact.numerics.yield_stress_reynolds import reduction_factor
 from lubecontact.unsteady.events import crossing_time
 
 # name: (units, long_name), along ``time``; a quantity that means what it means in a case
@@ -103,7 +105,8 @@ def instant(model, state) -> dict:
 
 def volume_balance(level) -> float:
     """Discrete mass balance of the full-film region at one level, from face fluxes
-    (reynolds.boundary_flux, independent of the assembled matrix) and the squeeze rate:
+    (reynolds.boundary_flux, independent of the assembled matrix; a grease's with its law) and
+    the squeeze rate:
     (net outflow + sum dA dh_T/dt) / (the largest of the wedge inlet flow, sum dA |dh_T/dt|
     and c0 h_s sum dA, the flow of squeezing the region's film by the film scale h_s over
     the step: at rest, once the film has settled, the first two vanish and a balance closed
@@ -114,8 +117,10 @@ def volume_balance(level) -> float:
     mesh = model.mesh
     full = interior_nodes(mesh.shape, mesh.line) & ~state.reynolds.cavitated
     squeeze = mesh.nodal_area * level.squeeze_rate
+    grease = yield_stress_law(model)
+    reduction = None if grease is None else (lambda gradient, content: reduction_factor(gradient, content, grease)[0])
     outflow = boundary_flux(mesh, state.reynolds, state.expected_gap, state.flow_coefficient, model.scene.operating.speed,
-                            state.faces)
+                            state.faces, reduction)
     inlet = 0.5 * abs(model.scene.operating.speed) * float(np.max(state.expected_gap)) * mesh.dy * mesh.ny
     squeezed = model.squeeze.coefficient * model.squeeze.film_scale * float(np.sum(mesh.nodal_area[full]))
     scale = max(inlet, float(np.sum(np.abs(squeeze[full]))), squeezed, 1e-300)
