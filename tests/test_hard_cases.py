@@ -163,9 +163,6 @@ CASES = {
                                        "motion.tolerance": 1e-5, "motion.duration": 0.02},
                                 "converges since the integrator jumps over the impasse at a sealing pocket (a step "
                                 "failed at t = 10.67 ms with dt = 4e-12 s), 10-14 s"),
-    # found in the twentieth session (issue 27): the figure build's Bingham stop. A step of a
-    # Newtonian film takes its own residual scale, a non-monotone line search and a force test by
-    # displacement (docs/physics.md section 20); with them this grease stop stalled at t = 1.6 s
     # listed in docs/DESIGN.md since the twentieth session as too slow to fail cheaply (169 s);
     # measured again in the thirty-ninth: it failed at t = 7.0 ms in 19-23 s, its step Newton
     # finding no descent at a scaled residual of 1.0e-5, after reconnecting at 4.41 ms (the
@@ -179,6 +176,9 @@ CASES = {
                                       "31-node line on the automatic domain: fails at t = 7.0 ms, a step's Newton "
                                       "finding no descent at a scaled residual of 1.0e-5, 19-23 s (a longer alarm, "
                                       "LONGER_BUDGET)"),
+    # found in the twentieth session (issue 27): the figure build's Bingham stop. A step of a
+    # Newtonian film takes its own residual scale, a non-monotone line search and a force test by
+    # displacement (docs/physics.md section 20); with them this grease stop stalled at t = 1.6 s
     "bingham_stop": (True, {"mesh.ny": 1, "mesh.nx": 101, "mesh.x_min": -1e-3, "mesh.x_max": 1e-3,
                             "lubricant.rheology": "bingham", "lubricant.yield_stress": 100.0,
                             "lubricant.creep_viscosity": 1e8, "operating.force": 2.0,
