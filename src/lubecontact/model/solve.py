@@ -40,12 +40,13 @@ SMOOTH_ENDS = (f"{SMOOTH_CLOSED}, and on a 2-D mesh an uncrowned cylinder's film
 # the cause is elsewhere. Measured on Table 1 crowned at 0.1 m on the automatic 51 x 51 domain
 # (sized by the Hertz ellipse, cells of 15 um): cold solves converge down to 0.02 m/s (13 s at
 # 0.03, 103 s at 0.02), and at 0.01 m/s the nested force balance closes the film and one Newton
-# from a cold start stalls at 0.4 of the load in its continuation, 19 s (tests/test_hard_cases.py,
-# smooth_crowned_default_mesh; docs/DESIGN.md "Hard cases").
+# from a cold start stalls at 0.4 of the load in its continuation, 11 s (tests/test_hard_cases.py,
+# smooth_crowned_default_mesh; docs/DESIGN.md "Hard cases"). Refined along the sliding, 81 x 51
+# and 101 x 31 converge there (44 and 29 s), central films within 2.5 % of 101 x 51's 20.18 nm.
 SMOOTH_CROWNED = (f"{SMOOTH_CLOSED}; this cylinder is crowned, its ends lifted, so the film failed within its "
                   "contact: thinner than the mesh's cells resolve, or beyond the solver at this speed "
-                  "(docs/DESIGN.md, \"Hard cases\"): refine the mesh, turn on effects.asperity_contact, or solve a "
-                  "line contact (mesh.ny: 1, without the crown)")
+                  "(docs/DESIGN.md, \"Hard cases\"): refine the mesh along the sliding (mesh.nx), turn on "
+                  "effects.asperity_contact, or solve a line contact (mesh.ny: 1, without the crown)")
 
 
 def solve(scene, fields: bool = False, initial: WarmStart | None = None, return_state: bool = False):
