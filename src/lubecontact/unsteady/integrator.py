@@ -76,7 +76,7 @@ MAX_FAILED_IN_A_ROW = 6
 # With a yield-stress lubricant at rest (after the motion's stop), a coupled solve that failed
 # on a step L grown beyond the last accepted one, whose retry at L/4 then passed (a step grown
 # too far), bounds the next steps: they stay below half the shortest such L, and that bound
-# doubles with each accepted step that reaches it (StepCeiling). There the plug leaves the
+# doubles once its patience of accepted steps have reached it (StepCeiling). There the plug leaves the
 # pressure undetermined as the squeeze term weakens (c0 ~ 1/dt): without the bound a step grown
 # fourfold from one that passed failed again, from 1 ms to 5 s (29 failed solves of 107 on
 # the Bingham stop, three quarters of its time). Where the shorter retry fails too, the
@@ -178,14 +178,20 @@ class Squeeze:
 @dataclass
 class StepCeiling:
     """The longest step the coupled solve is trusted with: half the shortest step grown beyond
-    the last accepted one whose solve failed where the retry passed, doubled by every accepted
-    step that reaches it (a bisection in log(dt) between the quarter step that passed and the
-    step that failed, which follows a solver limit that grows with time); none before such a
-    failure."""
+    the last accepted one whose solve failed where the retry passed, doubled once ``patience``
+    accepted steps have reached it (a search in log(dt) between the quarter step that passed
+    and the step that failed, which follows a solver limit that grows with time); none before
+    such a failure. Each such failure doubles the patience and each raised ceiling whose
+    first step passes halves it (at least 1): where the limit stays put, the probes beyond it
+    thin out geometrically instead of failing at every other step (a failed solve costs five to
+    seven accepted ones on a grease at rest, bench/EXPERIMENTS.md, fortieth session)."""
 
     floor: float = 0.0  # s: never bounded below this step (a contact's mass: Dynamics.shortest_step)
     failed: float = math.inf  # s: the bound's step, twice the longest step allowed
     suspect: float | None = None  # s: a grown step whose solve failed, until its retry ends
+    patience: int = 1  # accepted steps at the ceiling before it is doubled
+    reached: int = 0  # accepted steps at the ceiling since it was last set
+    probing: bool = False  # the ceiling was just doubled: its next step at it probes it
 
     def limit(self, dt: float) -> float:
         return min(dt, max(0.5 * self.failed, self.floor))
@@ -197,8 +203,13 @@ class StepCeiling:
     def accepted(self, dt: float):
         if self.suspect is not None:
             self.failed, self.suspect = min(self.failed, self.suspect), None
+            self.patience, self.reached, self.probing = 2 * self.patience, 0, False
         elif dt >= 0.5 * self.failed * (1.0 - 1e-12):  # reached, up to the rounding of (t + dt) - t
-            self.failed *= 2.0
+            if self.probing:
+                self.patience, self.probing = max(1, self.patience // 2), False
+            self.reached += 1
+            if self.reached >= self.patience:
+                self.failed, self.reached, self.probing = 2.0 * self.failed, 0, True
 
 
 def bdf_coefficients(steps: list[float]) -> list[float]:
