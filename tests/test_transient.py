@@ -445,6 +445,37 @@ def test_a_solver_limit_on_a_grease_at_rest_costs_a_failed_solve_per_four_accept
     assert failed > 0.5 * accepted
 
 
+def test_a_grease_at_rest_steps_back_from_a_level_no_step_starts_from(monkeypatch):
+    """integrator.TimeIntegrator.run: where every step from an accepted level of a grease at
+    rest fails (the tight Bingham stop of tests/test_hard_cases.py reached such states from
+    7.58 ms on), the run drops that level and steps again from the one before it, at half the
+    dropped step, each return to a later level than the last. A Newtonian film's run ends
+    there, saying why."""
+    real_step = integrator.TimeIntegrator.step
+    dead = []  # the time of the level no step starts from: the first accepted after 2 ms
+
+    def dead_end(self, levels, t_new, order, extrapolate=True):
+        if dead and levels[-1].time == dead[0]:
+            return None, "forced dead end"
+        level, outcome = real_step(self, levels, t_new, order, extrapolate)
+        if level is not None and not dead and level.time > 2e-3:
+            dead.append(level.time)
+        return level, outcome
+
+    monkeypatch.setattr(integrator.TimeIntegrator, "step", dead_end)
+    stop = {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.005}
+    grease = lc.load_scene(TABLE1, {**stop, "mesh.x_min": -1e-3, "mesh.x_max": 1e-3, "operating.speed": 1.0,
+                                    "operating.force": 2.0, "lubricant.rheology": "bingham",
+                                    "lubricant.yield_stress": 2000.0, "lubricant.creep_viscosity": 1e8})
+    series = lc.transient(grease, progress=False)
+    assert series["converged"].item() == 1 and series["time"].values[-1] == pytest.approx(0.005)
+    assert dead and dead[0] not in series["time"].values
+    dead.clear()
+    series = lc.transient(lc.load_scene(TABLE1, stop), progress=False)
+    assert series["converged"].item() == 0 and "forced dead end" in series.attrs["notes"]
+    assert series["time"].values[-1] == dead[0]
+
+
 def ceiling_run(limit_at, steps: int = 400) -> tuple[int, float]:
     """A model of the run's loop at rest against a solver whose step limit at time t is
     limit_at(t): the controller asks for fourfold growth, integrator.StepCeiling bounds it, a

@@ -200,10 +200,15 @@ class StepCeiling:
         """A solve failed on a step dt after an accepted step of length ``last``."""
         self.suspect = dt if dt > last and self.suspect is None else None
 
+    def bound(self, dt: float):
+        """A step dt proved too long (its solve failed where a shorter one passed, or no step
+        started from the level it reached: TimeIntegrator.run's step back)."""
+        self.failed, self.suspect = min(self.failed, dt), None
+        self.patience, self.reached, self.probing = 2 * self.patience, 0, False
+
     def accepted(self, dt: float):
         if self.suspect is not None:
-            self.failed, self.suspect = min(self.failed, self.suspect), None
-            self.patience, self.reached, self.probing = 2 * self.patience, 0, False
+            self.bound(self.suspect)
         elif dt >= 0.5 * self.failed * (1.0 - 1e-12):  # reached, up to the rounding of (t + dt) - t
             if self.probing:
                 self.patience, self.probing = max(1, self.patience // 2), False
@@ -714,7 +719,8 @@ class TimeIntegrator:
         reconnection), or up to where the run stopped: a step that failed
         MAX_FAILED_IN_A_ROW times, below MIN_STEP or below motion.tolerance times the step the
         error test last asked for (see MAX_FAILED_IN_A_ROW), unless a pocket seals there and a jump over its impasse
-        converges (jump_over_impasse), MAX_STEPS, or an interruption (KeyboardInterrupt,
+        converges (jump_over_impasse) or, with a grease at rest, the run steps back (drops that last
+        level, from which no step starts, and steps again from the level before; docs/DESIGN.md "Time"), MAX_STEPS, or an interruption (KeyboardInterrupt,
         which a SIGTERM handler may raise), whose failure message starts with "interrupted". ``report``
         (a callable taking one line) hears each decade of simulated time reached (1e-6 s,
         1e-5 s, ...): progress where no bar is shown."""
@@ -739,6 +745,7 @@ class TimeIntegrator:
         breaks.append(history.end)
         dt, order, failure, failed = first, 1, "", 0
         attempt = None  # (dt, error) of the last attempt from this level that failed the error test
+        returned_to = -math.inf  # the time of the level the last step back returned to (a grease at rest)
         asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
         longest = None  # the longest step the error test asked for since the motion last changed (creeping)
         ceiling = StepCeiling(floor=shortest)
@@ -795,6 +802,21 @@ class TimeIntegrator:
                                 # next jump needs the error test to shorten the steps again)
                                 asked, longest = dt, dt if longest is None else max(longest, dt)
                                 reached = until is not None and until(jump)
+                                continue
+                            back = stepping[-2].time  # the level a step back returns to
+                            if plug and not creeping and history.rest_from is not None and back >= history.rest_from \
+                                    and back > returned_to and (stepping is levels or len(stepping) > 4):
+                                # a grease at rest: drop the last level, from which no step starts, and
+                                # step again from the one before it, each return later than the last
+                                # (so between two returns the run gains a level, and ends)
+                                levels.pop()
+                                if stepping is not levels:
+                                    stepping.pop()
+                                returned_to = back
+                                self.rejected += 1
+                                ceiling.bound(t - back)
+                                bar.update(back - t)
+                                dt, failed, solve_failed, attempt = 0.5 * (t - back), 0, False, None
                                 continue
                             if pocket:
                                 outcome += (f"; a pocket of the film is sealing at {pocket}: there the state must "
