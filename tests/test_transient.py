@@ -406,6 +406,13 @@ def test_a_creeping_run_stops_once_its_steps_are_far_below_what_accuracy_asks(mo
     assert len(attempts) < 20
 
 
+# Table 1 stopped from its speed on the 31-node line, 5 ms; and with a Bingham grease of 2 kPa
+# on +-1 mm under 2 N, stopped from 1 m/s (the two tests below)
+SHORT_STOP = {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.005}
+GREASE_STOP = {**SHORT_STOP, "mesh.x_min": -1e-3, "mesh.x_max": 1e-3, "operating.speed": 1.0, "operating.force": 2.0,
+               "lubricant.rheology": "bingham", "lubricant.yield_stress": 2000.0, "lubricant.creep_viscosity": 1e8}
+
+
 def test_a_solver_limit_on_a_grease_at_rest_costs_a_failed_solve_per_four_accepted_steps_at_most(monkeypatch):
     """Every attempted step longer than ``limit`` fails its solve (as a Bingham grease at rest
     fails beyond a step that grows with time). Retrying at a quarter and growing fourfold again
@@ -435,13 +442,9 @@ def test_a_solver_limit_on_a_grease_at_rest_costs_a_failed_solve_per_four_accept
         assert np.all(np.diff(series["time"].values) <= limit)
         return outcomes.count(False), outcomes.count(True)
 
-    stop = {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.005}
-    grease = lc.load_scene(TABLE1, {**stop, "mesh.x_min": -1e-3, "mesh.x_max": 1e-3, "operating.speed": 1.0,
-                                    "operating.force": 2.0, "lubricant.rheology": "bingham",
-                                    "lubricant.yield_stress": 2000.0, "lubricant.creep_viscosity": 1e8})
-    failed, accepted = counted(grease)
+    failed, accepted = counted(lc.load_scene(TABLE1, GREASE_STOP))
     assert 0 < failed <= 0.25 * accepted
-    failed, accepted = counted(lc.load_scene(TABLE1, stop))
+    failed, accepted = counted(lc.load_scene(TABLE1, SHORT_STOP))
     assert failed > 0.5 * accepted
 
 
@@ -463,15 +466,11 @@ def test_a_grease_at_rest_steps_back_from_a_level_no_step_starts_from(monkeypatc
         return level, outcome
 
     monkeypatch.setattr(integrator.TimeIntegrator, "step", dead_end)
-    stop = {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.005}
-    grease = lc.load_scene(TABLE1, {**stop, "mesh.x_min": -1e-3, "mesh.x_max": 1e-3, "operating.speed": 1.0,
-                                    "operating.force": 2.0, "lubricant.rheology": "bingham",
-                                    "lubricant.yield_stress": 2000.0, "lubricant.creep_viscosity": 1e8})
-    series = lc.transient(grease, progress=False)
+    series = lc.transient(lc.load_scene(TABLE1, GREASE_STOP), progress=False)
     assert series["converged"].item() == 1 and series["time"].values[-1] == pytest.approx(0.005)
     assert dead and dead[0] not in series["time"].values
     dead.clear()
-    series = lc.transient(lc.load_scene(TABLE1, stop), progress=False)
+    series = lc.transient(lc.load_scene(TABLE1, SHORT_STOP), progress=False)
     assert series["converged"].item() == 0 and "forced dead end" in series.attrs["notes"]
     assert series["time"].values[-1] == dead[0]
 

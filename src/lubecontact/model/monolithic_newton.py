@@ -1089,7 +1089,8 @@ def finished_by_newton(model: Model, state: State, diagnostics: Diagnostics, con
             stopped = f"after {diagnostics.iterations} iterations ({why})" if diagnostics.failure else f"after {why}"
             return finished, newton_diagnostics, "; ".join([
                 f"the nested solver stopped {stopped}; one Newton {how} converged in {newton_diagnostics.iterations} "
-                "Newton iteration(s) (solver.method newton, docs/physics.md section 20)", *path_notes(newton_diagnostics)])
+                "Newton iteration(s) (solver.method newton, docs/physics.md section 20)",
+                *path_notes(newton_diagnostics)])
         newton_failures.append(f"one Newton {how}: {newton_diagnostics.failure}")
     return state, dataclasses.replace(diagnostics, failure="; then ".join([why, *newton_failures])), ""
 

@@ -719,8 +719,9 @@ class TimeIntegrator:
         reconnection), or up to where the run stopped: a step that failed
         MAX_FAILED_IN_A_ROW times, below MIN_STEP or below motion.tolerance times the step the
         error test last asked for (see MAX_FAILED_IN_A_ROW), unless a pocket seals there and a jump over its impasse
-        converges (jump_over_impasse) or, with a grease at rest, the run steps back (drops that last
-        level, from which no step starts, and steps again from the level before; docs/DESIGN.md "Time"), MAX_STEPS, or an interruption (KeyboardInterrupt,
+        converges (jump_over_impasse) or, with a grease at rest, the run steps back (drops that
+        last level, from which no step starts, and steps again from the level before;
+        docs/DESIGN.md "Time"), MAX_STEPS, or an interruption (KeyboardInterrupt,
         which a SIGTERM handler may raise), whose failure message starts with "interrupted". ``report``
         (a callable taking one line) hears each decade of simulated time reached (1e-6 s,
         1e-5 s, ...): progress where no bar is shown."""
@@ -749,7 +750,12 @@ class TimeIntegrator:
         asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
         longest = None  # the longest step the error test asked for since the motion last changed (creeping)
         ceiling = StepCeiling(floor=shortest)
-        plug = self.scene.lubricant.rheology != "newtonian"  # a yield stress: StepCeiling at rest
+
+        def plug_at_rest(instant: float) -> bool:
+            """A yield-stress lubricant at rest at ``instant`` (s): StepCeiling and step backs."""
+            return (self.scene.lubricant.rheology != "newtonian" and history.rest_from is not None
+                    and instant >= history.rest_from)
+
         rest = self.rest_domain()
         stepping = levels  # the levels the steps read: at rest their last ones restricted to the rest domain
         started = time.perf_counter()
@@ -774,7 +780,7 @@ class TimeIntegrator:
                     level, outcome = (None, CREEPING) if creeping else self.step(stepping, t_new, order)
                     if level is None:
                         failed, solve_failed = failed + 1, True
-                        if plug and history.rest_from is not None and t >= history.rest_from:
+                        if plug_at_rest(t):
                             ceiling.solve_failed(t_new - t, t - stepping[-2].time)
                         needless = asked is not None and t_new - t < self.tolerance * asked
                         unresolved = t_new - t <= shortest
@@ -804,8 +810,8 @@ class TimeIntegrator:
                                 reached = until is not None and until(jump)
                                 continue
                             back = stepping[-2].time  # the level a step back returns to
-                            if plug and not creeping and history.rest_from is not None and back >= history.rest_from \
-                                    and back > returned_to and (stepping is levels or len(stepping) > 4):
+                            if plug_at_rest(back) and not creeping and back > returned_to \
+                                    and (stepping is levels or len(stepping) > 4):
                                 # a grease at rest: drop the last level, from which no step starts, and
                                 # step again from the one before it, each return later than the last
                                 # (so between two returns the run gains a level, and ends)
