@@ -452,8 +452,8 @@ def test_a_grease_at_rest_steps_back_from_a_level_no_step_starts_from(monkeypatc
     """integrator.TimeIntegrator.run: where every step from an accepted level of a grease at
     rest fails (the tight Bingham stop of tests/test_hard_cases.py reached such states from
     7.58 ms on), the run drops that level and steps again from the one before it, at half the
-    dropped step, each return to a later level than the last. A Newtonian film's run ends
-    there, saying why."""
+    dropped step, each return to a later level than the last, and names each dropped level
+    in its notes (step_backs). A Newtonian film's run ends there, saying why."""
     real_step = integrator.TimeIntegrator.step
     dead = []  # the time of the level no step starts from: the first accepted after 2 ms
 
@@ -469,10 +469,11 @@ def test_a_grease_at_rest_steps_back_from_a_level_no_step_starts_from(monkeypatc
     series = lc.transient(lc.load_scene(TABLE1, GREASE_STOP), progress=False)
     assert series["converged"].item() == 1 and series["time"].values[-1] == pytest.approx(0.005)
     assert dead and dead[0] not in series["time"].values
+    assert series["step_backs"].item() >= 1 and f"the level at t = {dead[0]:.6g} s, back to" in series.attrs["notes"]
     dead.clear()
     series = lc.transient(lc.load_scene(TABLE1, SHORT_STOP), progress=False)
     assert series["converged"].item() == 0 and "forced dead end" in series.attrs["notes"]
-    assert series["time"].values[-1] == dead[0]
+    assert series["time"].values[-1] == dead[0] and series["step_backs"].item() == 0
 
 
 def ceiling_run(limit_at, steps: int = 400) -> tuple[int, float]:

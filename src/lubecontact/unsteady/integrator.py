@@ -553,6 +553,7 @@ class TimeIntegrator:
         self.base = BaseExcitation.from_scene(scene)
         self.coupled_solves = 0
         self.rejected = 0
+        self.step_backs = []  # (time of the dropped level, time returned to) of each step back (run)
         self.fallback = NewtonFallback()
 
     def rest_domain(self) -> Model | None:
@@ -819,6 +820,7 @@ class TimeIntegrator:
                                 if stepping is not levels:
                                     stepping.pop()
                                 returned_to = back
+                                self.step_backs.append((t, back))
                                 self.rejected += 1
                                 ceiling.bound(t - back)
                                 bar.update(back - t)

@@ -52,6 +52,8 @@ SCALARS = {
     "solve_time": ("s", "wall time of the run"),
     "impasse_jumps": ("1", "steps over an impasse at a sealing pocket, accepted without the error test (the state "
                            "jumps there)"),
+    "step_backs": ("1", "levels of a yield-stress lubricant at rest dropped because no step from them converged "
+                        "(the run stepped again from the level before; counted in rejected_steps too)"),
     "longest_impasse_jump": ("s", "the longest such step (0: none): a time within it is uncertain by its length"),
     "reconnect_time_jumps": ("s", "total length of the impasse jumps before the reconnection (0: none; nan: no "
                                   "reconnection): reconnect_time's uncertainty from them"),
@@ -83,7 +85,7 @@ EVENT = {
     "event_open_at_end": ("1", "1 if the event is still open when the run ends (its duration a lower bound)"),
 }
 INTEGER = ("step_converged", "iterations", "order", "converged", "steps", "rejected_steps", "coupled_solves", "valid",
-           "impasse_jumps", "impasse_jump",
+           "impasse_jumps", "impasse_jump", "step_backs",
            "event_count", "relative_event_count", "event_open_at_end")
 
 

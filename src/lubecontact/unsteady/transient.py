@@ -72,6 +72,27 @@ def impasse_note(jumps) -> str:
             + ". A time within such a step is uncertain by its length (longest_impasse_jump)")
 
 
+def step_back_note(backs, reconnected_at: float) -> str:
+    """What a run says whose grease at rest stepped back (integrator.TimeIntegrator.step_backs:
+    (time of the dropped level, time returned to), s), "" where it did not: each dropped level
+    had passed its own step, yet no step from it converged, so the run went on from the level
+    before on another path (docs/DESIGN.md "Time"). The plug pressure such a level holds is
+    not known (docs/physics.md section 21), so a time located after the first return
+    (``reconnected_at``, absolute, s; NaN: none) is on the path around it."""
+    if not backs:
+        return ""
+    first = min(back for _, back in backs)
+    after = (f"the reconnection (t = {reconnected_at:.6g} s) comes before them"
+             if math.isfinite(reconnected_at) and reconnected_at <= first else
+             "a time located after them is on the path around them: a run at another motion.tolerance "
+             "(motion.error_bar) shows whether it moves")
+    return (f"{len(backs)} step(s) back at rest: a level of the yield-stress lubricant's film passed its step, "
+            "but no step from it converged, so the run dropped it and stepped again from the level before at "
+            "half the dropped step (docs/DESIGN.md \"Time\"): "
+            + "; ".join(f"the level at t = {dropped:.6g} s, back to {back:.6g} s" for dropped, back in backs)
+            + f". {after[0].upper()}{after[1:]}")
+
+
 def times_within_jumps(jumps, located: dict[str, float]) -> str:
     """What a run says of the times it located (``located``: name -> absolute time, s: the
     reconnection, the events' edges) that fall inside an impasse jump (``impasse_jumps``),
@@ -428,6 +449,7 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     scalars["longest_impasse_jump"] = max((level.time - before.time for before, level in jumps), default=0.0)
     if jumps:
         notes.append(impasse_note(jumps))
+    scalars["step_backs"] = len(integrator.step_backs)
     rows = level_rows(levels)
     resistance = np.array([row["contact_resistance"] for row in rows])
     recon = reconnect_time(series_t, resistance, since, scene.motion.reconnect_factor * rest,
@@ -450,6 +472,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
         shared = jump_share_note(scalars["reconnect_time_jumps"], recon, scene.motion.tolerance)
         if shared:
             notes.append(shared)
+    backs = step_back_note(integrator.step_backs, reconnected_at)
+    if backs:
+        notes.append(backs)
     located = {"the reconnection": reconnected_at} if math.isfinite(recon) else {}
     for k, event in enumerate(opened.events, start=1):
         located |= {f"event {k}'s start": event.start, f"event {k}'s end": event.end}
