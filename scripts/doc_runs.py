@@ -380,8 +380,8 @@ def accuracy_block(study_file: Path | None = None, log=print, keep: Path | None 
         scales = list(table["domain"].values)
         if 1.0 in scales:
             change = np.nanmax(table[f"domain_{q}_change"].values[:, scales.index(1.0)])
-            domain = (f" Lengthening the automatic domain up to {max(scales):g}× moves it by at most "
-                      f"{100 * change:.2g} %.")
+            domain = (f" Lengthening the automatic domain's long inlet (mesh.far_inlet: false) up to "
+                      f"{max(scales):g}× moves it by at most {100 * change:.2g} %.")
     rows = cost_table(table, [q], TARGETS)
     text = [f"Read off, for the Table 1 contact ({when}):", "", *rows, "",
             f"The observed order of ln R is {np.nanmin(orders):.2g}–{np.nanmax(orders):.2g}."

@@ -106,7 +106,8 @@ def test_study_pipeline_on_tiny_meshes(tmp_path):
     assert np.all(table["domain_contact_resistance_change"].values[:, -1] == 0.0)
     assert np.all(table["tolerance_contact_resistance_change"].values[:, 1] == 0.0)  # 1e-7
     text = cv.markdown(table, spec["targets"])
-    assert "| 21 \u00d7 21 | 693 | -2.06 |" in text and "Cheapest square mesh" in text  # 21 + 12 inlet columns at 1 m/s
+    # 1 m/s: the far inlet, no inlet columns (the long inlet had 21 + 12, 693 nodes from -2.06 mm)
+    assert "| 21 \u00d7 21 | 441 | -1.11 |" in text and "Cheapest square mesh" in text
     assert np.all(table["x_min"].values < 0) and table["x_min"].attrs["units"] == "m"
     fig = plot_accuracy_cost(table)
     assert [ax.get_xlabel() for ax in fig.axes] == ["solve time (s)"] * 3

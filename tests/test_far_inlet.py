@@ -164,13 +164,24 @@ def test_a_far_inlet_where_it_does_not_hold_is_refused_naming_what_it_needs(over
         lc.load_scene(TABLE1, {**MARTIN, **overrides})
 
 
-def test_a_motions_mesh_keeps_the_long_inlet_and_the_key_is_a_switch():
+def test_a_motions_mesh_keeps_the_long_inlet_and_the_key_is_auto_by_default():
+    """mesh.far_inlet: auto (the default, left out of the canonical form, so old scenes keep
+    their hash) takes the far inlet where the long inlet adds columns and it fits; true asks
+    for it anywhere it fits; false keeps the long inlet; a motion's mesh keeps it."""
     line = lc.load_scene(TABLE1, {**MARTIN, "mesh.nx": 51})
     motion = build_mesh(line, far_inlet=False)  # as unsteady/integrator.py builds a motion's mesh
     assert not motion.far_inlet and motion.nx > build_mesh(line).nx == 51
-    off = lc.load_scene(TABLE1, {"mesh.ny": 1})
-    assert lc.load_scene(TABLE1, {"mesh.ny": 1, "mesh.far_inlet": False}).hash == off.hash  # old scenes keep theirs
-    assert line.replace({"mesh.far_inlet": False}).hash != line.hash
+    default = lc.load_scene(TABLE1, {"mesh.ny": 1})
+    assert lc.load_scene(TABLE1, {"mesh.ny": 1, "mesh.far_inlet": "auto"}).hash == default.hash
+    assert "far_inlet" not in default.canonical_yaml() and default.mesh.far_inlet is None
+    for key in (True, False):
+        assert lc.load_scene(TABLE1, {"mesh.ny": 1, "mesh.far_inlet": key}).hash != default.hash
+    fast, slow = (lc.load_scene(TABLE1, {"mesh.ny": 1, "mesh.nx": 51, "operating.speed": u}) for u in (10.0, 0.001))
+    assert build_mesh(fast).far_inlet and build_mesh(fast).nx == 51 < nodes_x(fast.replace({"mesh.far_inlet": False}))
+    assert not build_mesh(slow).far_inlet and build_mesh(slow.replace({"mesh.far_inlet": True})).far_inlet
+    # auto where it does not fit: the long inlet, no refusal
+    crowned = fast.replace({"mesh.ny": 11, "geometry.crown_radius": 0.1})
+    assert not build_mesh(crowned).far_inlet and build_mesh(crowned).nx > 51
 
 
 def test_a_starved_steady_line_is_told_of_the_far_inlet_which_floods_it():
@@ -180,15 +191,19 @@ def test_a_starved_steady_line_is_told_of_the_far_inlet_which_floods_it():
     rests on Martin's parabola beyond 0.9 R, a gap the cylinder does not have. Table 1's own
     oil needs no lubricant from there: no flag."""
     viscous = {"mesh.ny": 1, "lubricant.viscosity": 10.0, "operating.speed": 1.0}
-    starved = lc.solve(lc.load_scene(TABLE1, viscous))
-    assert "inlet" in starved.attrs["validity"] and "mesh.far_inlet: true" in starved.attrs["notes"]
+    starved = lc.solve(lc.load_scene(TABLE1, {**viscous, "mesh.far_inlet": False}))
+    assert "inlet" in starved.attrs["validity"] and "leave mesh.far_inlet at auto" in starved.attrs["notes"]
     flooded = lc.solve(lc.load_scene(TABLE1, {**viscous, "mesh.far_inlet": True}))
+    default = lc.solve(lc.load_scene(TABLE1, viscous))  # auto: the far inlet here
+    assert default["min_film_thickness"].item() == flooded["min_film_thickness"].item()
     assert flooded["converged"].item() == 1 and "inlet" in flooded.attrs["validity"]
     assert "beyond 0.9 R" in flooded.attrs["notes"] and "parabola" in flooded.attrs["notes"]
-    assert "mesh.far_inlet: true" not in flooded.attrs["notes"]
+    assert "leave mesh.far_inlet" not in flooded.attrs["notes"]
     assert flooded["min_film_thickness"].item() > starved["min_film_thickness"].item()
     table1 = lc.solve(lc.load_scene(TABLE1, {"mesh.ny": 1, "operating.speed": 1.0, "mesh.far_inlet": True}))
     assert "inlet" not in table1.attrs["validity"]
     for where_it_would_not_hold in ({"mesh.ny": 21, "geometry.crown_radius": 0.1}, {"mesh.x_min": -5e-3, "mesh.x_max": 5e-4},
                                     {"motion.kind": "stop"}):
-        assert far_inlet_advice(lc.load_scene(TABLE1, {**viscous, **where_it_would_not_hold})) == ""
+        assert far_inlet_advice(lc.load_scene(TABLE1, {**viscous, "mesh.far_inlet": False,
+                                                       **where_it_would_not_hold})) == ""
+    assert far_inlet_advice(lc.load_scene(TABLE1, viscous)) == ""  # auto: it has the far inlet already

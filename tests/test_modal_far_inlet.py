@@ -139,11 +139,12 @@ def test_the_offset_slopes_are_the_exteriors_derivatives_in_the_first_faces_film
 def test_a_2d_mesh_without_its_inlet_columns_carries_the_long_inlets_film(method):
     """Table 1 on 31 x 31 at 10 m/s, where the long inlet is longest: the same film within
     0.02 % and the resistance within 1 % on a third of the nodes."""
-    base = {"mesh.nx": 31, "mesh.ny": 31, "operating.speed": SPEED, "solver.method": method}
+    base = {"mesh.nx": 31, "mesh.ny": 31, "operating.speed": SPEED, "solver.method": method, "mesh.far_inlet": False}
     long_inlet = lc.solve(lc.load_scene(TABLE1, base))
     scene = lc.load_scene(TABLE1, {**base, "mesh.far_inlet": True})
     open_mesh = lc.solve(scene)
     assert open_mesh["converged"].item() == 1 and build_mesh(scene).nx == 31
+    assert build_mesh(lc.load_scene(TABLE1, {**base, "mesh.far_inlet": "auto"})).far_inlet  # the default here
     assert build_mesh(lc.load_scene(TABLE1, base)).nx > 3 * 31
     for name, tolerance in (("central_film_thickness", 2e-4), ("min_film_thickness", 2e-4),
                             ("contact_resistance", 1e-2), ("friction_coefficient", 1e-2)):

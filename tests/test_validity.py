@@ -81,7 +81,8 @@ def test_a_return_stroke_draws_its_film_from_x_max():
     oscillation's peak at 1 mm and 20 Hz: 7 % thinner), and the flag ``inlet`` names x_max
     there, while the forward stroke raises none."""
     def films(overrides, speed):
-        scene = prepare(lc.load_scene(TABLE1, {"mesh.ny": 1, "lubricant.viscosity": 1.0, **overrides})).scene
+        scene = prepare(lc.load_scene(TABLE1, {"mesh.ny": 1, "lubricant.viscosity": 1.0, "mesh.far_inlet": False,
+                                               **overrides})).scene
         mesh = build_mesh(scene_at(scene, speed))
         out = []
         for u in (speed, -speed):

@@ -198,9 +198,11 @@ def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
 
 
 def far_inlet_advice(scene) -> str:
-    """What the flag ``inlet`` adds where the scene could take the far inlet instead (a steady
-    contact on the automatic domain: numerics/mesh.far_inlet_problems), else ""."""
-    if scene.mesh.far_inlet or far_inlet_problems(replace(scene, mesh=replace(scene.mesh, far_inlet=True))):
+    """What the flag ``inlet`` adds where the scene turned off the far inlet that would fit it
+    (mesh.far_inlet: false on a steady contact on the automatic domain:
+    numerics/mesh.far_inlet_problems), else "": by default (auto) a scene whose long inlet
+    falls short already has it."""
+    if scene.mesh.far_inlet is not False or far_inlet_problems(replace(scene, mesh=replace(scene.mesh, far_inlet=True))):
         return ""
-    return (", or set mesh.far_inlet: true (the rigid film upstream as the boundary condition, docs/physics.md "
+    return (", or leave mesh.far_inlet at auto (the rigid film upstream as the boundary condition, docs/physics.md "
             "section 17)")

@@ -27,11 +27,12 @@ the mesh has ``nodes_x(scene)`` >= nx nodes along x. Each speed thus has its own
 MAX_DOMAIN_RADII x R (Eq. 4 needs |x| < R), where the validity flag ``inlet`` reports a
 film still short of its flooded value.
 
-Where the scene asks for it (mesh.far_inlet) and the film upstream is the rigid one
-(numerics/far_inlet.py on a line, numerics/modal_far_inlet.py on a straight cylinder;
-far_inlet_problems: a steady Newtonian contact between rough surfaces, the automatic domain)
-the mesh needs none of those cells: ``build_mesh(scene)`` ends at -3.5 s and marks the mesh
-``far_inlet``, and the solvers take the exterior as its boundary condition. A motion's mesh
+Where the film upstream is the rigid one (numerics/far_inlet.py on a line,
+numerics/modal_far_inlet.py on a straight cylinder; _far_inlet_missing: a steady Newtonian
+contact between rough surfaces, the automatic domain) the mesh needs none of those cells: by
+default (mesh.far_inlet auto) wherever the long inlet would add some, or wherever the scene
+asks for it (true), ``build_mesh(scene)`` ends at -3.5 s and marks the mesh ``far_inlet``, and
+the solvers take the exterior as its boundary condition (far_inlet_serves). A motion's mesh
 (``far_inlet=False``, unsteady/integrator.py) keeps them: its squeeze reaches upstream.
 """
 
@@ -85,15 +86,13 @@ def film_inlet_length(scene) -> float:
     return INLET_FILM_LENGTHS * float(np.sqrt(2.0 * scene.geometry.radius * martin_film(scene)))
 
 
-def far_inlet_problems(scene) -> list[str]:
-    """Why the scene's mesh.far_inlet cannot serve (empty when it can, or is not asked for):
-    the rigid film upstream (numerics/far_inlet.py on a line, numerics/modal_far_inlet.py on
-    a 2-D mesh) needs a straight cylinder (one gap for every row), on a 2-D mesh Reynolds
-    or no cavitation (its exterior is in that solve only), the automatic domain, a Newtonian
-    lubricant (a grease's flux is not linear in its pressure gradient), rough surfaces (their
-    films on the faces) and a steady solve (a motion's squeeze reaches upstream)."""
-    if not scene.mesh.far_inlet:
-        return []
+def _far_inlet_missing(scene) -> list[str]:
+    """What the rigid film upstream (numerics/far_inlet.py on a line, numerics/modal_far_inlet.py
+    on a 2-D mesh) needs and the scene lacks: a straight cylinder (one gap for every row), on a
+    2-D mesh Reynolds or no cavitation (its exterior is in that solve only), the automatic
+    domain, a Newtonian lubricant (a grease's flux is not linear in its pressure gradient),
+    rough surfaces (their films on the faces) and a steady solve (a motion's squeeze reaches
+    upstream)."""
     needs = {"a straight cylinder (no geometry.crown_radius)": scene.geometry.crown_radius is None,
              "on a 2-D mesh, effects.cavitation reynolds or none (its exterior is in the Reynolds solve only)":
                  scene.mesh.ny == 1 or scene.effects.cavitation != "jfo",
@@ -102,31 +101,51 @@ def far_inlet_problems(scene) -> list[str]:
              "asperity contact (effects.asperity_contact: true)": bool(scene.effects.asperity_contact),
              "a steady solve (motion.kind: steady, no vibration)": (scene.motion.kind == "steady"
                                                                    and scene.motion.vibration == "none")}
-    missing = [need for need, met in needs.items() if not met]
+    return [need for need, met in needs.items() if not met]
+
+
+def far_inlet_problems(scene) -> list[str]:
+    """Why the far inlet a scene asks for (mesh.far_inlet: true) cannot serve (empty when it
+    can, or is not asked for: mesh.far_inlet auto takes it only where it fits)."""
+    if scene.mesh.far_inlet is not True:
+        return []
+    missing = _far_inlet_missing(scene)
     if not missing:
         return []
     return ["mesh.far_inlet: true needs " + ", ".join(missing) + " (docs/physics.md section 17, \"The far inlet\")"]
 
 
 def far_inlet_serves(scene) -> bool:
-    """Whether the scene asks for the far inlet (mesh.far_inlet) and it serves: no
-    far_inlet_problems, and a fluid sliding at U > 0."""
-    effects = scene.effects
-    return (scene.mesh.far_inlet and not far_inlet_problems(scene) and effects.hydrodynamics
-            and scene.operating.speed > 0.0)
+    """Whether the scene's mesh is open to the far inlet: a fluid sliding at U > 0 on a scene
+    it fits (_far_inlet_missing), asked for (mesh.far_inlet: true) or, by default (auto),
+    wherever the long inlet would add columns upstream of the domain for the film
+    (docs/physics.md section 17, "The far inlet": there the rigid film upstream replaces
+    them, as the exact limit of an ever longer inlet)."""
+    asked, effects = scene.mesh.far_inlet, scene.effects
+    if asked is False or not (effects.hydrodynamics and scene.operating.speed > 0.0) or _far_inlet_missing(scene):
+        return False
+    return asked is True or _long_inlet(scene)[2] > 0
 
 
-def _inlet_cells(scene, far_inlet: bool) -> tuple[float, float, int]:
-    """(x_min, x_max, cells added upstream) of the domain before the cells are added; none
-    where ``far_inlet`` and far_inlet_serves."""
+def _long_inlet(scene) -> tuple[float, float, int]:
+    """(x_min, x_max, cells added upstream) of the long inlet: the domain before the cells are
+    added, and the whole cells of its spacing that reach the film's inlet (film_inlet_length,
+    up to MAX_DOMAIN_RADII x R; none on an explicit domain)."""
     s = auto_length_scale(scene)
     x_min = -UPSTREAM_LENGTHS * s if scene.mesh.x_min is None else float(scene.mesh.x_min)
     x_max = DOWNSTREAM_LENGTHS * s if scene.mesh.x_max is None else float(scene.mesh.x_max)
-    if scene.mesh.x_min is not None or not x_max > x_min or (far_inlet and far_inlet_serves(scene)):
+    if scene.mesh.x_min is not None or not x_max > x_min:
         return x_min, x_max, 0
     spacing = (x_max - x_min) / (scene.mesh.nx - 1)
     inlet = min(film_inlet_length(scene), MAX_DOMAIN_RADII * scene.geometry.radius)
     return x_min, x_max, max(0, int(np.ceil((inlet + x_min) / spacing - 1e-9)))
+
+
+def _inlet_cells(scene, far_inlet: bool) -> tuple[float, float, int]:
+    """(x_min, x_max, cells added upstream) of the domain before the cells are added (_long_inlet);
+    none where ``far_inlet`` and far_inlet_serves."""
+    x_min, x_max, cells = _long_inlet(scene)
+    return x_min, x_max, 0 if far_inlet and far_inlet_serves(scene) else cells
 
 
 def nodes_x(scene, far_inlet: bool = True) -> int:

@@ -566,17 +566,20 @@ class MeshSettings(_Section):
     ny: int = _field(51, _Integer(3, also=(1,)), "nodes along y (cylinder axis); 1 = line contact")
     x_min: float | None = _field(None, _AutoOr(_Real("m")), "inlet end of the domain (auto: mesh.domain_x)")
     x_max: float | None = _field(None, _AutoOr(_Real("m")), "outlet end of the domain (auto: mesh.domain_x)")
-    far_inlet: bool = _field(
-        False, _Flag(),
-        "steady contact on the automatic domain: the rigid film upstream of it as its boundary condition, in place "
-        "of the inlet columns (a line: Martin's film; a straight cylinder: its sine modes across the length; "
-        "docs/physics.md section 17, \"The far inlet\"); a motion keeps them",
+    far_inlet: bool | None = _field(
+        None, _AutoOr(_Flag()),
+        "the rigid film upstream of the automatic domain as its boundary condition, in place of the inlet columns "
+        "(a line: Martin's film; a straight cylinder: its sine modes across the length; docs/physics.md section 17, "
+        "\"The far inlet\"): auto (the default) wherever the long inlet would add columns and it fits (a steady "
+        "Newtonian contact between rough surfaces, a straight cylinder; a motion keeps the columns), true to ask "
+        "for it (refused where it does not fit), false for the long inlet",
     )
 
     def to_dict(self):
-        """The default (no far inlet) is left out, so scenes written before the key keep their hash."""
+        """The default (auto) is left out, so scenes written before the key keep their hash (the
+        solver's fingerprint in each case file re-solves what the default changed)."""
         data = super().to_dict()
-        if not self.far_inlet:
+        if self.far_inlet is None:
             del data["far_inlet"]
         return data
 

@@ -369,8 +369,10 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
              "Errors: contact resistance |R/R_ext - 1| (extrapolated in ln R); friction |f/f_ext - 1|; "
              "minimum film |h - h_ext| / max(|h_ext|, sigma).",
              "The ladder uses the automatic domain and the scene's tolerance: its errors are those of the mesh "
-             "alone. The domain and tolerance tables of each speed add their own (domain table, row 1 = the automatic domain: "
-             "its truncation error at that speed).", ""]
+             "alone. The domain and tolerance tables of each speed add their own (domain table: the long inlet, "
+             "mesh.far_inlet false, row 1 its automatic length: its truncation error at that speed; where the ladder's "
+             "automatic domain is open to the far inlet, at speeds whose long inlet adds columns, the film upstream is "
+             "the flooded one by construction).", ""]
     lines += ["## Cheapest square mesh for a target error (nodes a side, solve time)", ""]
     lines += cost_table(table, quantities, targets)
     for i, speed in enumerate(speeds):
