@@ -138,10 +138,14 @@ def num(x: float) -> str:
 
 
 def measured_on() -> str:
-    """When and where: today's date, the machine and the commit (the times depend on them)."""
+    """When and where: today's date, the machine and the commit (the times depend on them),
+    "modified" where the package's sources differ from it (the run is not that commit's)."""
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    changed = subprocess.run(["git", "status", "--porcelain", "--", "src"], cwd=ROOT, capture_output=True,
+                             text=True).stdout.strip()
     return (f"measured {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d} on {os.cpu_count()} "
-            f"{platform.machine()} CPUs (load average {os.getloadavg()[0]:.1f} at the start), commit {commit or 'unknown'}")
+            f"{platform.machine()} CPUs (load average {os.getloadavg()[0]:.1f} at the start), commit "
+            f"{commit or 'unknown'}{' (modified)' if changed else ''}")
 
 
 def percent(change: float) -> str:
