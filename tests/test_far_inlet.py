@@ -207,3 +207,24 @@ def test_a_starved_steady_line_is_told_of_the_far_inlet_which_floods_it():
         assert far_inlet_advice(lc.load_scene(TABLE1, {**viscous, "mesh.far_inlet": False,
                                                        **where_it_would_not_hold})) == ""
     assert far_inlet_advice(lc.load_scene(TABLE1, viscous)) == ""  # auto: it has the far inlet already
+
+
+def test_a_case_and_the_cli_say_which_inlet_the_mesh_has(capsys, tmp_path):
+    """A case's attribute ``mesh`` and `lubecontact solve` name the mesh solved and what lies
+    upstream of it: the far inlet (the default at 10 m/s), the long inlet's added columns
+    (mesh.far_inlet: false), or nothing (0.001 m/s, where the long inlet adds none)."""
+    from lubecontact.cli.main import main
+
+    coarse = {"mesh.nx": 21, "mesh.ny": 11}
+    for speed, key, said in ((10.0, "auto", "open upstream to the far inlet"), (10.0, "false", "the long inlet: "),
+                             (0.001, "auto", "p = 0 at x_min")):
+        scene = lc.load_scene(TABLE1, {**coarse, "operating.speed": speed, "mesh.far_inlet": key})
+        mesh = build_mesh(scene)
+        ds = lc.solve(scene)
+        expected = f"11 x {mesh.nx} nodes (y x x), x from {mesh.x[0] * 1e3:.4g} to {mesh.x[-1] * 1e3:.4g} mm"
+        assert ds.attrs["mesh"].startswith(expected) and said in ds.attrs["mesh"]
+        if key == "false":
+            assert f"the long inlet: {mesh.nx - 21} columns added" in ds.attrs["mesh"] and mesh.nx > 21
+        assert main(["solve", TABLE1, "--set", f"operating.speed={speed}", "--set", f"mesh.far_inlet={key}",
+                     "--set", "mesh.nx=21", "--set", "mesh.ny=11", "--out", str(tmp_path / "case.nc")]) == 0
+        assert f"mesh: {ds.attrs['mesh']}" in capsys.readouterr().out

@@ -260,7 +260,8 @@ def _run(args) -> int:
             return EXIT_NOT_CONVERGED
         write, effects_run, values = result.write, result.attrs["effects_run"], result.scalars
         why = result.attrs["notes"]  # a point that did not converge says why (the file has it too)
-        speeds, validity_notes, sweep_lines = [scene.operating.speed], result.attrs["validity_notes"], []
+        more_lines = [f"{'mesh':>22s}: {result.attrs['mesh']}"]
+        speeds, validity_notes = [scene.operating.speed], result.attrs["validity_notes"]
     elif args.command == "transient":
         from lubecontact.cli.transient import run_transient
 
@@ -275,15 +276,15 @@ def _run(args) -> int:
         write, effects_run = (lambda path: write_case(ds, path)), ds.attrs["effects_run"]
         values = {name: ds[name].values for name in (*_SHOWN, *_JUDGED)}
         speeds, validity_notes = ds["speed"].values, ds.attrs["validity_notes"]
-        why, sweep_lines = "each point's notes are in the file", []
+        why, more_lines = "each point's notes are in the file", []
         points = [f"{u:g} m/s" for u in speeds]
         if "direction" in ds.dims:  # (direction, speed): each value with its speed, and how the two differ
             points = [f"{u:g} m/s {way}" for way in ds["direction"].values for u in speeds]
             speeds = np.broadcast_to(speeds, ds["contact_resistance"].shape).ravel()
-            sweep_lines.append(f"  hysteresis: {ds.attrs['hysteresis']}")
+            more_lines.append(f"  hysteresis: {ds.attrs['hysteresis']}")
         restarted = [point for point, flag in zip(points, ds["cold_restart"].values.ravel()) if flag == 1]
         if restarted:
-            sweep_lines.append(f"  cold restart at {', '.join(restarted)}: the state continued from the previous speed "
+            more_lines.append(f"  cold restart at {', '.join(restarted)}: the state continued from the previous speed "
                                "did not converge there, and a cold start did (cold_restart = 1: the branch followed "
                                "may end there)")
     try:
@@ -292,7 +293,7 @@ def _run(args) -> int:
         print(f"lubecontact: could not write {args.out}: {err.strerror or err}; the result is lost", file=sys.stderr)
         return EXIT_NOT_CONVERGED
     print(_summary(effects_run, values))
-    print("\n".join([*_findings(values, speeds, validity_notes, scene.interface.open_resistance), *sweep_lines]))
+    print("\n".join([*_findings(values, speeds, validity_notes, scene.interface.open_resistance), *more_lines]))
     print(f"wrote {args.out}")
     if not _converged(values):
         print(f"lubecontact: the solve did NOT converge (converged = 0 in the file): {why}", file=sys.stderr)

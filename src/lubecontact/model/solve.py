@@ -25,6 +25,7 @@ from lubecontact.model.outputs import point_outputs
 from lubecontact.model.prepare import prepare
 from lubecontact.model.validity import assess, flag_bits
 from lubecontact.numerics.blas_threads import one_blas_thread
+from lubecontact.numerics.mesh import describe_mesh
 
 # Why a smooth film on a 2-D mesh most likely failed, said with the failure: the fluid pressure
 # is ambient at the cylinder's ends (y = +-L/2), so the ends of an uncrowned cylinder sink less
@@ -106,4 +107,5 @@ def solve_case(scene, fields: bool = False, initial: WarmStart | None = None):
             field_data["film_content"] = state.reynolds.content
     result = CaseResult.build(requested, scalars, field_data, mesh, model.effects_run, "; ".join(notes), ",".join(validity) or "ok")
     # one line per flag, for the CLI and a sweep (notes join everything with "; ")
-    return result.with_attrs(validity_notes="\n".join(f"{flag}: {note}" for flag, note in validity.items())), state
+    return result.with_attrs(validity_notes="\n".join(f"{flag}: {note}" for flag, note in validity.items()),
+                             mesh=describe_mesh(mesh, scene.mesh.nx)), state

@@ -233,6 +233,18 @@ class Mesh:
         return np.outer(wy, wx)
 
 
+def describe_mesh(mesh: Mesh, requested_nx: int) -> str:
+    """The mesh a solve ran on, in words for a case's attribute ``mesh`` and the CLI: nodes,
+    domain and spacing along x, and what lies upstream of x_min (the far inlet, or the long
+    inlet's columns beyond the ``requested_nx`` of mesh.nx)."""
+    added = mesh.nx - requested_nx
+    upstream = ("open upstream to the far inlet (the rigid film beyond x_min as its boundary condition)"
+                if mesh.far_inlet else f"the long inlet: {added} columns added upstream for the film" if added > 0
+                else "p = 0 at x_min")
+    return (f"{mesh.ny} x {mesh.nx} nodes (y x x), x from {mesh.x[0] * 1e3:.4g} to {mesh.x[-1] * 1e3:.4g} mm "
+            f"every {mesh.dx * 1e6:.3g} um; {upstream}")
+
+
 def rest_mesh(mesh: Mesh, refinement: int) -> Mesh:
     """The mesh a motion's steps go on with at rest (unsteady/integrator.TimeIntegrator.rest_domain,
     docs/physics.md section 14): x on [-x_max, x_max], symmetric about the line of contact as
