@@ -747,7 +747,6 @@ class TimeIntegrator:
         breaks.append(history.end)
         dt, order, failure, failed = first, 1, "", 0
         attempt = None  # (dt, error) of the last attempt from this level that failed the error test
-        returned_to = -math.inf  # the time of the level the last step back returned to (a grease at rest)
         asked, solve_failed = None, False  # the error test's last step (above); a failed solve in this step
         longest = None  # the longest step the error test asked for since the motion last changed (creeping)
         ceiling = StepCeiling(floor=shortest)
@@ -811,6 +810,7 @@ class TimeIntegrator:
                                 reached = until is not None and until(jump)
                                 continue
                             back = stepping[-2].time  # the level a step back returns to
+                            returned_to = self.step_backs[-1][1] if self.step_backs else -math.inf
                             if plug_at_rest(back) and not creeping and back > returned_to \
                                     and (stepping is levels or len(stepping) > 4):
                                 # a grease at rest: drop the last level, from which no step starts, and
@@ -819,7 +819,6 @@ class TimeIntegrator:
                                 levels.pop()
                                 if stepping is not levels:
                                     stepping.pop()
-                                returned_to = back
                                 self.step_backs.append((t, back))
                                 self.rejected += 1
                                 ceiling.bound(t - back)
