@@ -9,6 +9,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import lubecontact as lc
+from lubecontact.cli.main import main
 from lubecontact.model.validity import far_inlet_advice
 from lubecontact.numerics.far_inlet import FarInlet, parabola_integrals
 from lubecontact.numerics.mesh import Mesh, build_mesh, domain_x, nodes_x
@@ -213,8 +214,6 @@ def test_a_case_and_the_cli_say_which_inlet_the_mesh_has(capsys, tmp_path):
     """A case's attribute ``mesh`` and `lubecontact solve` name the mesh solved and what lies
     upstream of it: the far inlet (the default at 10 m/s), the long inlet's added columns
     (mesh.far_inlet: false), or nothing (0.001 m/s, where the long inlet adds none)."""
-    from lubecontact.cli.main import main
-
     coarse = {"mesh.nx": 21, "mesh.ny": 11}
     for speed, key, said in ((10.0, "auto", "open upstream to the far inlet"), (10.0, "false", "the long inlet: "),
                              (0.001, "auto", "p = 0 at x_min")):
