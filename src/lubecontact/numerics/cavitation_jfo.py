@@ -54,8 +54,8 @@ from lubecontact.numerics.reynolds import (
     interior_nodes,
     reynolds_system,
     solve_reynolds,
-    unknown_numbers,
 )
+from lubecontact.numerics.reynolds_pattern import unknown_numbers
 from lubecontact.numerics.transfer import coarser_mesh, interpolate_field
 
 

@@ -38,7 +38,9 @@ little earlier in the coupled iteration, on the same pressurised set or one a fe
 away: CG preconditioned with its factors, the set change eliminated exactly, BlockInverse
 and ExtendedFactors), the same for an active-set step whose set differs from the step
 before by a few nodes, and ``load_sensitivity`` (dW/dh by one back-substitution, so the
-force balance takes Newton steps instead of extra Reynolds solves).
+force balance takes Newton steps instead of extra Reynolds solves). The matrix itself is
+assembled on a sparsity pattern kept per set of unknowns (numerics/reynolds_pattern.py), so
+an evaluation computes its values and nothing of its structure.
 """
 
 from __future__ import annotations
@@ -50,6 +52,7 @@ import scipy.sparse as sp
 
 from lubecontact.numerics.linear_algebra import BlockInverse
 from lubecontact.numerics.projected_smoothing import smoothed_cavitated_set
+from lubecontact.numerics.reynolds_pattern import ReynoldsPattern, reynolds_pattern
 from lubecontact.numerics.transfer import coarser_mesh, interpolate_field
 from lubecontact.physics.percolation import FaceFilm, face_films
 
@@ -93,6 +96,7 @@ class ReynoldsSystem:
     matrix: sp.csr_matrix  # (n, n) symmetric M-matrix, m^3/(Pa s)
     rhs: np.ndarray  # (n,) m^3/s
     unknown: np.ndarray  # (ny, nx) bool; the n unknowns in C order
+    pattern: ReynoldsPattern  # where A's entries are stored, kept across assemblies
 
 
 def interior_nodes(shape: tuple[int, int], line: bool) -> np.ndarray:
@@ -102,13 +106,6 @@ def interior_nodes(shape: tuple[int, int], line: bool) -> np.ndarray:
     else:
         interior[1:-1, 1:-1] = True
     return interior
-
-
-def unknown_numbers(unknown: np.ndarray) -> np.ndarray:
-    """Each node's index among the unknowns (C order) of the mask ``unknown``, -1 off them."""
-    number = np.full(unknown.shape, -1)
-    number[unknown] = np.arange(int(unknown.sum()))
-    return number
 
 
 def face_transmissibilities(mesh, coefficient, faces=None):
@@ -169,43 +166,27 @@ def reynolds_system(mesh, expected_gap, coefficient, speed, faces=None, squeeze_
     tx, ty = face_transmissibilities(mesh, coefficient, faces)
     diagonal = cell_diagonal(mesh, tx, ty)
     unknown = interior_nodes(mesh.shape, mesh.line) & (diagonal > 0.0)
-    number = unknown_numbers(unknown)
-    n = int(unknown.sum())
-
-    rows, cols, vals = [np.arange(n)], [np.arange(n)], [diagonal[unknown]]
-    for a, c, t in ((number[:, :-1], number[:, 1:], tx), (number[:-1, :], number[1:, :], ty)):
-        both = (a >= 0) & (c >= 0)
-        rows += [a[both], c[both]]
-        cols += [c[both], a[both]]
-        vals += [-t[both], -t[both]]
+    pattern = reynolds_pattern(unknown, 0 if exterior is None else exterior.inflow.size)
     couette = couette_face_flux(mesh, expected_gap, speed, faces)
     outflow = np.zeros(mesh.shape)
     outflow[:, 1:-1] = couette[:, 1:] - couette[:, :-1]
     if squeeze_rate is not None:
         outflow += mesh.nodal_area * squeeze_rate
     if exterior is not None:
-        first = number[1:-1, 1]
-        if np.any(first < 0):
-            raise ValueError("the far inlet's first column has a node without flow")
-        rows.append(np.repeat(first, first.size))
-        cols.append(np.tile(first, first.size))
-        vals.append(exterior.block.ravel())
         outflow[1:-1, 1] -= exterior.inflow
-    matrix = sp.csr_matrix(
-        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)
-    )
-    return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown)
+    matrix = pattern.matrix(diagonal[unknown], tx, ty, None if exterior is None else exterior.block)
+    return ReynoldsSystem(matrix=matrix, rhs=-outflow[unknown], unknown=unknown, pattern=pattern)
 
 
-def _solve_on(matrix, rhs, free, index, nearby=None):
+def _solve_on(system, free, index, nearby=None):
     """(p, BlockInverse of A_FF or None) with p = 0 off the free set and A_FF p_F = b_F on
-    it; ``index``: flat mesh index of each unknown; ``nearby``: the BlockInverse of
-    a nearby matrix to precondition with (BlockInverse)."""
-    p = np.zeros(rhs.size)
+    it (``system``: a ReynoldsSystem); ``index``: flat mesh index of each unknown;
+    ``nearby``: the BlockInverse of a nearby matrix to precondition with (BlockInverse)."""
+    p = np.zeros(system.rhs.size)
     inverse = None
     if free.any():
-        inverse = BlockInverse(matrix[free][:, free].tocsc(), index[free], nearby)
-        p[free] = inverse.solve(rhs[free])
+        inverse = BlockInverse(system.pattern.block(system.matrix, free), index[free], nearby)
+        p[free] = inverse.solve(system.rhs[free])
     return p, inverse
 
 
@@ -245,16 +226,18 @@ def _nested_guess(mesh, coarse, system, expected_gap, coefficient, speed, max_it
     return smoothed_cavitated_set(system, interpolate_field(solution.pressure, coarse, mesh))
 
 
-def _active_set(matrix, rhs, cavitated, max_steps, index, nearby=None):
-    """Primal-dual active-set steps from the cavitated set ``cavitated`` (unknown-node mask):
+def _active_set(system, cavitated, max_steps, index, nearby=None):
+    """Primal-dual active-set steps on ``system`` (a ReynoldsSystem) from the cavitated set
+    ``cavitated`` (unknown-node mask):
     (p, cavitated set of p, steps, whether the set repeated, BlockInverse of the last step).
     ``index``: flat mesh index of each unknown; ``nearby``: a BlockInverse (the previous
     evaluation's) whose factors may precondition the first step; each later step is
     preconditioned by the factors of the step before (BlockInverse), so a free boundary
     that moves by a few nodes costs back-substitutions, not a factorisation."""
+    matrix, rhs = system.matrix, system.rhs
     w_tol = SET_TOLERANCE * np.abs(rhs).max(initial=0.0)
     for steps in range(1, max_steps + 1):
-        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby)
+        p, factor = _solve_on(system, ~cavitated, index, nearby)
         nearby = factor if factor is not None else nearby
         w = matrix @ p - rhs
         p_tol = SET_TOLERANCE * np.abs(p).max(initial=0.0)
@@ -315,7 +298,7 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     nearby = _reusable(mesh, reuse)
     if not cavitation:
         cavitated = np.zeros(rhs.size, dtype=bool)
-        p, factor = _solve_on(matrix, rhs, ~cavitated, index, nearby)
+        p, factor = _solve_on(system, ~cavitated, index, nearby)
         iterations, repeated = 1, True
     else:
         iterations, repeated = 0, False
@@ -326,11 +309,11 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
             warm = np.asarray(cavitated_guess, dtype=bool)[system.unknown]
         if warm is not None:
             p, cavitated, iterations, repeated, factor = _active_set(
-                matrix, rhs, warm, min(WARM_START_STEPS, max_iterations), index, nearby
+                system, warm, min(WARM_START_STEPS, max_iterations), index, nearby
             )
         if not repeated and iterations < max_iterations:
             cold = _cold_guess(mesh, system, expected_gap, coefficient, speed, max_iterations, squeeze_rate)
-            p, cavitated, steps, repeated, factor = _active_set(matrix, rhs, cold, max_iterations - iterations, index)
+            p, cavitated, steps, repeated, factor = _active_set(system, cold, max_iterations - iterations, index)
             iterations += steps
     residual = _relative_residual(matrix, rhs, p, cavitated, cavitation)
 

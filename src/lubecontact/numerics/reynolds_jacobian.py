@@ -22,7 +22,7 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 
-from lubecontact.numerics.reynolds import unknown_numbers
+from lubecontact.numerics.reynolds_pattern import unknown_numbers
 from lubecontact.physics.percolation import FaceFilm
 
 
