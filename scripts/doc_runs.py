@@ -2,7 +2,7 @@
 transient stops of the Table 1 contact and its oil and grease variants (film, reconnect
 time, steps, their mesh dependence and CPU time), the cases of the transient study's grease
 figure (config/transient.yaml figures.grease), the accuracy study of
-config/accuracy.yaml (the cheapest mesh for a target error, observed orders) and the
+config/accuracy.yaml (the coarsest mesh for a target error, observed orders) and the
 transient's (config/transient.yaml's ``accuracy`` ladders: the reconnect time's mesh and
 time-step errors).
 
@@ -35,7 +35,7 @@ from lubecontact.scene import load_scene
 from lubecontact.studies import transient_cases
 from lubecontact.studies.accuracy import accuracy_table, cost_table, run_study
 from lubecontact.studies.accuracy_plan import study_spec
-from lubecontact.studies.transient_accuracy import cheapest_within, ladder_table
+from lubecontact.studies.transient_accuracy import ladder_table, least_work_within
 from lubecontact.studies.transient_cases import figure_cases
 from lubecontact.studies.transient_cases import study_spec as transient_spec
 from lubecontact.unsteady.transient import PERCOLATION_ALTERNATIVES, transient
@@ -427,8 +427,8 @@ def transient_accuracy_block(table_file: Path | None = None, log=print) -> str:
         raise RuntimeError(f"the tolerance ladder {list(tolerances)} lacks the default motion.tolerance {default:g}: "
                            "its error is what the block quotes")
     tol_error = float(table["tolerance_error"].values[list(tolerances).index(default)])
-    within = cheapest_within(table, "mesh", 0.05)
-    five = (f"The cheapest mesh within 5 % is {shapes[list(nodes).index(within[0])]} ({num(within[1])} s)." if within
+    within = least_work_within(table, "mesh", 0.05)
+    five = (f"The coarsest mesh within 5 % is {shapes[list(nodes).index(within[0])]} ({num(within[1])} s)." if within
             else f"No mesh of the ladder is within 5 %: the finest, {shapes[-1]}, is {num(100 * errors[-1])} % low.")
     def rough(part):
         """The caveat of a ladder outside the asymptotic range (studies/accuracy.richardson)."""

@@ -318,18 +318,20 @@ def accuracy_table(study: xr.Dataset) -> xr.Dataset:
     return out
 
 
-def cheapest_index(errors: np.ndarray, times: np.ndarray, target: float) -> int | None:
-    """Index of the fastest member (least ``times``) whose error is finite and <= target,
-    or None."""
+def least_work_index(errors: np.ndarray, work: np.ndarray, target: float) -> int | None:
+    """Index of the member doing the least ``work`` (nodes, or steps' worth of tolerance)
+    whose error is finite and <= target, or None. By work, not by measured time: members of
+    similar cost swap places with timing noise (36² and 51² at 0.001 m/s did, from one run of
+    the study to the next), while the work a member does is fixed by its definition."""
     good = np.flatnonzero(np.isfinite(errors) & (errors <= target))
-    return None if good.size == 0 else int(good[np.argmin(times[good])])
+    return None if good.size == 0 else int(good[np.argmin(work[good])])
 
 
-def cheapest(table: xr.Dataset, quantity: str, speed_index: int, target: float) -> tuple[int, float] | None:
-    """(nodes a side, solve time s) of the fastest mesh whose error is <= target, or None."""
-    times = table["solve_time"].values[speed_index]
-    best = cheapest_index(table[f"{quantity}_error"].values[speed_index], times, target)
-    return None if best is None else (int(table["mesh"].values[best]), float(times[best]))
+def coarsest_mesh(table: xr.Dataset, quantity: str, speed_index: int, target: float) -> tuple[int, float] | None:
+    """(nodes a side, solve time s) of the coarsest mesh whose error is <= target, or None."""
+    nodes = table["mesh"].values
+    best = least_work_index(table[f"{quantity}_error"].values[speed_index], nodes, target)
+    return None if best is None else (int(nodes[best]), float(table["solve_time"].values[speed_index, best]))
 
 
 def percent(x: float) -> str:
@@ -341,7 +343,7 @@ def percent(x: float) -> str:
 
 def cost_table(table: xr.Dataset, quantities: Sequence[str], targets: Sequence[float]) -> list[str]:
     """Markdown rows of what each target error costs: per quantity and target, at each speed
-    the cheapest square mesh that reaches it and its solve time (README.md quotes these
+    the coarsest square mesh that reaches it and its solve time (README.md quotes these
     rows, written by scripts/doc_numbers.py)."""
     speeds = table["speed"].values
     header = "| quantity | target | " + " | ".join(f"U = {s:g} m/s ({table['regime'].values[i]})" for i, s in enumerate(speeds)) + " |"
@@ -350,7 +352,7 @@ def cost_table(table: xr.Dataset, quantities: Sequence[str], targets: Sequence[f
         for target in targets:
             cells = []
             for i in range(len(speeds)):
-                found = cheapest(table, q, i, target)
+                found = coarsest_mesh(table, q, i, target)
                 cells.append(f"{found[0]}², {found[1]:.3g} s" if found else "finer than the ladder")
             lines.append(f"| {QUANTITIES[q].label} | {percent(target)} | " + " | ".join(cells) + " |")
     return lines

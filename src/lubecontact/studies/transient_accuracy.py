@@ -25,7 +25,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from lubecontact.studies.accuracy import cheapest_index, extrapolate, percent
+from lubecontact.studies.accuracy import extrapolate, least_work_index, percent
 
 # what each ladder varies: its coordinate's long name and units, and the spacing its
 # Richardson extrapolation uses
@@ -114,12 +114,15 @@ def _ladder_scalars(out: xr.Dataset, part: str, ext, error: np.ndarray) -> None:
                                  {"long_name": "1 if the observed order is in the asymptotic range", "units": "1"})
 
 
-def cheapest_within(table: xr.Dataset, part: str, target: float) -> tuple[float, float] | None:
-    """(member, wall time) of the cheapest ladder member within ``target`` relative error,
-    or None when no member is."""
-    run_time = table[f"{part}_run_time"].values
-    best = cheapest_index(table[f"{part}_error"].values, run_time, target)
-    return None if best is None else (float(table[part].values[best]), float(run_time[best]))
+def least_work_within(table: xr.Dataset, part: str, target: float) -> tuple[float, float] | None:
+    """(member, wall time) of the ladder member doing the least work within ``target``
+    relative error (the fewest nodes, at rest too; the loosest motion.tolerance), or None
+    when no member is (accuracy.least_work_index: not the least measured time, which swaps
+    members of similar cost with timing noise)."""
+    members = table[part].values
+    work = 1.0 / members if part == "tolerance" else members * table[f"{part}_ny"].values
+    best = least_work_index(table[f"{part}_error"].values, work, target)
+    return None if best is None else (float(members[best]), float(table[f"{part}_run_time"].values[best]))
 
 
 def markdown(table: xr.Dataset, targets: Sequence[float] = (0.05, 0.01)) -> str:
@@ -142,7 +145,7 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.05, 0.01)) -> str:
             lines.append(f"Extrapolated: {ext * 1e3:.4g} ms, observed order {float(table[f'{part}_order']):.2f}, "
                          f"GCI {percent(float(table[f'{part}_gci']))}{asymptotic}.")
             for target in targets:
-                best = cheapest_within(table, part, target)
+                best = least_work_within(table, part, target)
                 lines.append(f"- within {percent(target)}: " + (f"{part} {best[0]:g}, {best[1]:.3g} s" if best
                                                                   else "no member of the ladder"))
         lines.append("")
