@@ -152,7 +152,15 @@ STALL_ITERATIONS = 8
 STALL_FACTOR = 0.5
 # Nested start: the coarsest mesh solved first (nodes a side); only with asperity contact,
 # as the nested solver (model/coupling.py): a coarse mesh may not resolve a smooth film.
-NESTED_COARSEST = 26
+# 13, not the nested solver's 26: on the far inlet (a 2-D mesh without inlet columns, the
+# default since the forty-first session) 51 x 51 coarsened once to 26 x 26, whose cold
+# Newton stalled at the contact (scaled residual 54 -> 62 in 8 iterations, every variant)
+# and went on by load continuation: Table 1 at 1 m/s took 2.37 s against 0.27 s from 13 x 13
+# (10 m/s: 1.35 against 0.59 s; 101 x 101: 3.10 against 0.69 s and 2.06 against 1.06 s); the
+# long inlet had reached its coarsest mesh, 26 x 20, by halving x alone. Without the far
+# inlet (0.01 and 0.1 m/s) 13 costs 5-10 % more (medians of three, alternated in one process;
+# forty-second session).
+NESTED_COARSEST = 13
 # Continuation from a cold start that fails: the first fraction of the load (or speed), then
 # doubled back to the whole of it; at most this many halvings, of the start and of each step.
 CONTINUATION_HALVINGS = 6
