@@ -12,7 +12,7 @@ Rows (bench/README.md, "The solver core's targets"):
   the median of POINT_REPEATS solves, in units; at 1 m/s and the worst of SPEEDS (the default
   mesh.far_inlet, auto: open to the far inlet where the long inlet adds columns); and each
   point again on the long inlet (mesh.far_inlet: false, the default before the forty-first
-  session);
+  session) and by the one Newton alone (solver.method: newton; VARIANTS);
 - the Table 1 stop (bench/transient.py's ``stop_scene``: from 1 m/s over 1 ms, followed for
   0.1 s) at 51², in steady 51² points at 1 m/s, and at 71² against 51²;
 - the issue's failing cases (a 20 N line stop, a 10 Pa s oscillation, a 100 Pa s fretting of
@@ -58,6 +58,9 @@ FAILING = {  # the issue's cases that failed when it was filed, at default toler
                                                      "motion.amplitude": 50e-6, "motion.frequency": 100.0,
                                                      "motion.cycles": 1},
 }
+# The steady points again with other settings: the long inlet (the default until the
+# forty-first session) and the one Newton alone (the solver meant to replace the nested one).
+VARIANTS = {"long_points": {"mesh.far_inlet": False}, "newton_points": {"solver.method": "newton"}}
 TARGETS = {"point_51": 0.2, "point_201": 2.5, "stop_in_points": 30.0, "stop_71_over_51": 3.0, "figures_min": 10.0}
 
 
@@ -76,11 +79,10 @@ def factorisation_unit() -> float:
     return statistics.median(cpu_seconds(lambda: splu(laplacian))[0] for _ in range(UNIT_REPEATS))
 
 
-def steady_point(n: int, speed: float, far_inlet: bool | None = None) -> dict:
+def steady_point(n: int, speed: float, overrides: dict | None = None) -> dict:
     """Median CPU seconds of a cold solve of Table 1 on n x n at ``speed`` (after a warm-up),
-    with mesh.far_inlet = ``far_inlet`` (None: the default, auto)."""
-    far = {} if far_inlet is None else {"mesh.far_inlet": far_inlet}
-    scene = lc.load_scene(SCENE, {"mesh.nx": n, "mesh.ny": n, "operating.speed": speed, **far})
+    with the scene's ``overrides`` besides (None: the defaults)."""
+    scene = lc.load_scene(SCENE, {"mesh.nx": n, "mesh.ny": n, "operating.speed": speed, **(overrides or {})})
     lc.solve(scene)
     times, ds = zip(*(cpu_seconds(lambda: lc.solve(scene)) for _ in range(POINT_REPEATS)))
     return {"cpu_s": statistics.median(times), "converged": bool(int(ds[-1]["converged"]))}
@@ -102,11 +104,12 @@ def measure(figures: bool) -> dict:
         for speed in SPEEDS:
             out["points"][(n, speed)] = steady_point(n, speed)
             log(f"{n}^2 at {speed:g} m/s: {out['points'][(n, speed)]['cpu_s']:.3f} s")
-    out["long_points"] = {}  # the same points on the long inlet (mesh.far_inlet: false)
-    for n in (51, 201):
-        for speed in SPEEDS:
-            out["long_points"][(n, speed)] = steady_point(n, speed, far_inlet=False)
-            log(f"{n}^2 at {speed:g} m/s, long inlet: {out['long_points'][(n, speed)]['cpu_s']:.3f} s")
+    for key, overrides in VARIANTS.items():  # the same points on the long inlet, and by the one Newton
+        out[key] = {}
+        for n in (51, 201):
+            for speed in SPEEDS:
+                out[key][(n, speed)] = steady_point(n, speed, overrides)
+                log(f"{n}^2 at {speed:g} m/s, {key}: {out[key][(n, speed)]['cpu_s']:.3f} s")
     out["stops"] = {}
     for n in (51, 71):
         out["stops"][n] = transient_run(stop_scene(n, n, None))
@@ -162,12 +165,17 @@ def markdown(m: dict) -> str:
     else:
         lines.append("| figure build | not measured (run with --figures) | ≤ 10 min | |")
     speeds = " / ".join(f"{point[(n, s)]:.2f}" for n in (51, 201) for s in SPEEDS)
-    long = {key: value["cpu_s"] / unit for key, value in m["long_points"].items()}
-    long_speeds = " / ".join(f"{long[(n, s)]:.2f}" for n in (51, 201) for s in SPEEDS)
+    def variant(key: str) -> str:
+        """The points of a VARIANTS entry in units, and whether all converged."""
+        units = " / ".join(f"{m[key][(n, s)]['cpu_s'] / unit:.2f}" for n in (51, 201) for s in SPEEDS)
+        return f"{units}; all converged: {all(p['converged'] for p in m[key].values())}"
+
     lines += ["", f"Every steady point, in units, 51² then 201² at {', '.join(f'{s:g}' for s in SPEEDS)} m/s: "
               f"{speeds}; all converged: {all(p['converged'] for p in m['points'].values())}.",
               f"The same on the long inlet (mesh.far_inlet: false; the default until the forty-first session): "
-              f"{long_speeds}; all converged: {all(p['converged'] for p in m['long_points'].values())}.",
+              f"{variant('long_points')}.",
+              f"The same by the one Newton alone (solver.method: newton; the nested solver is the default): "
+              f"{variant('newton_points')}.",
               f"Reconnect time of the stop: {stop51['reconnect_time_s'] * 1e3:.2f} ms at 51², "
               f"{stop71['reconnect_time_s'] * 1e3:.2f} ms at 71²."]
     return "\n".join(lines) + "\n"
