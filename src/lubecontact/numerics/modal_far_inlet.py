@@ -72,17 +72,21 @@ def graded_grid(length: float, first: float, nodes: int, inserted: float) -> np.
     return np.unique(np.append(xi, inserted))
 
 
-def tridiagonal(lower: np.ndarray, diagonal: np.ndarray, upper: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """The tridiagonal systems along the last axis of ``diagonal`` (modes, n), every mode at
-    once and the right-hand sides of ``rhs`` (r, modes, n): one LAPACK gtsv on the modes laid
-    end to end, uncoupled (2-6x faster than Thomas' algorithm in numpy on 49-199 modes of 200
-    nodes, measured in session 56)."""
-    below, above = lower.copy(), upper.copy()
-    below[:, 0] = above[:, -1] = 0.0  # no coupling between one mode's last node and the next's first
+def symmetric_tridiagonal(off_diagonal: np.ndarray, diagonal: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """The symmetric positive definite tridiagonal systems along the last axis of ``diagonal``
+    (modes, n), coupled to the next node by ``off_diagonal`` (modes, n; its last column
+    unused), every mode at once and the right-hand sides of ``rhs`` (r, modes, n): one LAPACK
+    ptsv (L D L^T without pivoting) on the modes laid end to end, uncoupled. Each mode's
+    matrix is a conductance matrix plus lambda_k^2 times a positive diagonal, so positive
+    definite; ptsv took 0.19 ms where the general gtsv took 0.28 ms on 49 modes of 199 nodes,
+    the same solution to 1e-15 (forty-second session); gtsv was 2-6x faster than Thomas'
+    algorithm in numpy (session 56)."""
+    coupling = off_diagonal.copy()
+    coupling[:, -1] = 0.0  # no coupling between one mode's last node and the next's first
     columns = np.ascontiguousarray(rhs.reshape(rhs.shape[0], -1).T)
-    *_, solution, info = lapack.dgtsv(below.ravel()[1:], diagonal.ravel(), above.ravel()[:-1], columns)
+    *_, solution, info = lapack.dptsv(diagonal.ravel(), coupling.ravel()[:-1], columns)
     if info != 0:
-        raise np.linalg.LinAlgError(f"the far inlet's mode equations are singular (LAPACK gtsv info {info})")
+        raise np.linalg.LinAlgError(f"the far inlet's mode equations are not positive definite (LAPACK ptsv info {info})")
     return solution.T.reshape(rhs.shape)
 
 
@@ -112,12 +116,11 @@ def mode_responses(offset: float, eigenvalues: np.ndarray, xi: np.ndarray, start
     conduct = film_mid**3 / (12.0 * viscosity) / np.diff(xi)  # per face
     width = 0.5 * (xi[2:] - xi[:-2])  # the inner nodes' cells
     diagonal = conduct[:-1] + conduct[1:] + eigenvalues[:, None] * (poiseuille[1:-1] * width)
-    lower = np.broadcast_to(-conduct[:-1], diagonal.shape)
-    upper = np.broadcast_to(-conduct[1:], diagonal.shape)
+    upper = np.broadcast_to(-conduct[1:], diagonal.shape)  # node j to j + 1 (and back: symmetric)
     rhs = np.zeros((2, *diagonal.shape))
     rhs[0, :, 0] = conduct[0]  # u: P = 1 at x_1
     rhs[1] = -0.5 * speed * (film_mid[:-1] - film_mid[1:])  # v: the Couette source
-    inner = tridiagonal(lower, diagonal, upper, rhs)
+    inner = symmetric_tridiagonal(upper, diagonal, rhs)
     edge = np.zeros((2, eigenvalues.size, 1))
     u, v = np.concatenate([edge, inner, edge], axis=2)
     u[:, 0] = 1.0
