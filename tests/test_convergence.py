@@ -95,6 +95,7 @@ def test_study_pipeline_on_tiny_meshes(tmp_path):
     spec = accuracy_plan.study_spec(TABLE1.replace("scenes/table1.yaml", "accuracy.yaml"), {
         "speeds": [1.0], "meshes": [11, 15, 21], "timing": {"repeats": 1},
         "domain": {"mesh": 11, "scales": [1.0, 1.5]}, "tolerance": {"mesh": 11, "values": [1e-4, 1e-7]},
+        "newton": {"mesh": 11, "values": [1e-3, 1e-7]},
     })
     table = cv.accuracy_table(cv.run_study(spec, log=lambda line: None))
     for q in spec["quantities"]:
@@ -105,7 +106,13 @@ def test_study_pipeline_on_tiny_meshes(tmp_path):
     # the reference of each check is its own zero
     assert np.all(table["domain_contact_resistance_change"].values[:, -1] == 0.0)
     assert np.all(table["tolerance_contact_resistance_change"].values[:, 1] == 0.0)  # 1e-7
+    # the one Newton against the nested solver's tightest: the same discrete problem, so at a
+    # tight tolerance the two agree to it, and a loose one shows its own error (not zero)
+    newton = table["newton_contact_resistance_change"]
+    assert newton.values[0, 1] < 1e-5 and 0.0 < newton.values[0, 0] and newton.attrs["units"] == "1"
+    assert "nested solver's tightest tolerance" in newton.attrs["long_name"]
     text = cv.markdown(table, spec["targets"])
+    assert "the one Newton (solver.method newton) at each solver tolerance on the 11² mesh" in text
     # 1 m/s: the far inlet, no inlet columns (the long inlet had 21 + 12, 693 nodes from -2.06 mm)
     assert "| 21 \u00d7 21 | 441 | -1.11 |" in text and "Cheapest square mesh" in text
     assert np.all(table["x_min"].values < 0) and table["x_min"].attrs["units"] == "m"

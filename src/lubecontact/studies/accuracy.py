@@ -4,7 +4,8 @@ Extends the paper's Fig. 3 (section 2.6: contact resistance on several meshes, 5
 chosen) into a measured error budget. For one scene at speeds in the boundary, mixed and
 full-film regimes, ``run_study`` solves a ladder of square meshes (nodes a side n, spacing
 h = 1/(n - 1) of the domain, refined by about sqrt(2) per level), a few domain lengths at a
-fixed spacing and a few solver tolerances, timing every solve. ``accuracy_table`` then
+fixed spacing and a few solver tolerances (by the default solver, and by the one Newton
+against it), timing every solve. ``accuracy_table`` then
 estimates the mesh-converged value of each quantity by Richardson extrapolation with the
 observed order of accuracy, and the error of every mesh against it, so that a user reads
 off "1 % in resistance at 1 m/s needs mesh n and t seconds" (``markdown``,
@@ -162,7 +163,7 @@ def run_study(spec: Mapping, log: Callable[[str], None] = print) -> xr.Dataset:
     """Solve every point of ``spec`` (``study_spec``; see ``study_points``), each from a cold start after a
     warm-up solve, timing each (median of up to spec["timing"]["repeats"] solves within
     spec["timing"]["budget"] seconds). Returns the raw study Dataset: per part ("mesh",
-    "domain", "tolerance") the quantities, solve_time and RECORDED over (speed, <part>)."""
+    "domain", "tolerance", "newton") the quantities, solve_time and RECORDED over (speed, <part>)."""
     base = load_scene(spec["scene"], spec.get("set") or {})
     quantities = list(spec["quantities"])
     timing = spec.get("timing") or {}
@@ -196,6 +197,8 @@ def run_study(spec: Mapping, log: Callable[[str], None] = print) -> xr.Dataset:
         "mesh": ("nodes a side (nx = ny)", "1", [int(n) for n in spec["meshes"]]),
         "domain": ("domain length / automatic domain length", "1", [float(s) for s in (spec.get("domain") or {}).get("scales", [])]),
         "tolerance": ("solver.tolerance", "1", [float(v) for v in (spec.get("tolerance") or {}).get("values", [])]),
+        "newton": ("solver.tolerance of the one Newton (solver.method newton)", "1",
+                   [float(v) for v in (spec.get("newton") or {}).get("values", [])]),
     }
     for part, rows in results.items():
         long_name, units, keys = part_coords[part]
@@ -211,7 +214,7 @@ def run_study(spec: Mapping, log: Callable[[str], None] = print) -> xr.Dataset:
         floor = QUANTITIES[q].floor
         out[q].attrs["error_floor"] = float(key_value(base, floor)) if floor else 0.0
     out.attrs.update({
-        "title": "lubecontact accuracy study: mesh ladder, domain lengths and solver tolerances",
+        "title": "lubecontact accuracy study: mesh ladder, domain lengths and solver tolerances (nested and one Newton)",
         "Conventions": "CF-1.10",
         "scene": base.canonical_yaml(),
         "scene_file": str(spec["scene"]),
@@ -220,6 +223,7 @@ def run_study(spec: Mapping, log: Callable[[str], None] = print) -> xr.Dataset:
         "quantities": ",".join(quantities),
         "domain_mesh": int((spec.get("domain") or {}).get("mesh", 0)),
         "tolerance_mesh": int((spec.get("tolerance") or {}).get("mesh", 0)),
+        "newton_mesh": int((spec.get("newton") or {}).get("mesh", 0)),
         "timing": f"median of up to {repeats} solves within {budget:g} s, after a warm-up solve",
     })
     return out
@@ -245,8 +249,9 @@ def accuracy_table(study: xr.Dataset) -> xr.Dataset:
     - ``q_order_by_mesh`` (speed, mesh): the observed order of the three meshes ending at
       each mesh (the asymptotic range shows as a plateau);
     - ``q_error`` (speed, mesh): error of each mesh against the extrapolated value;
-    - ``domain_q_change`` / ``tolerance_q_change``: change against the largest domain and
-      the tightest tolerance, in the same error measure;
+    - ``domain_q_change`` / ``tolerance_q_change`` / ``newton_q_change``: change against the
+      largest domain, the tightest tolerance and, for the one Newton, the nested solver's
+      tightest tolerance (reference_values), in the same error measure;
     - ``regime`` (speed): boundary / mixed / full film on the finest mesh.
 
     A quantity that is not finite (an open circuit) or not positive where extrapolated in
@@ -299,23 +304,36 @@ def accuracy_table(study: xr.Dataset) -> xr.Dataset:
         out[f"{q}_order_by_mesh"] = (("speed", "mesh"), by_mesh, {"units": "1", "long_name": f"observed order of the three meshes ending at this one{log_note}"})
         denominator = "|R/R_ext - 1|" if QUANTITIES[q].log else ("|f - f_ext| / max(|f_ext|, sigma)" if floor else "|f/f_ext - 1|")
         out[f"{q}_error"] = (("speed", "mesh"), error, {"units": "1", "long_name": f"relative error of the {QUANTITIES[q].label} against the extrapolated value, {denominator}"})
-        for part, reference in (("domain", np.argmax), ("tolerance", np.argmin)):
+        for part in ("domain", "tolerance", "newton"):
             name = f"{part}_{q}"
             if name not in study:
                 continue
-            keys = study[part].values
             values = study[name].values
+            references, what = reference_values(study, part, q)
             change = np.full(values.shape, np.nan)
             for i in range(n_speed):
-                ref = values[i, reference(keys)]
                 if np.all(np.isfinite(values[i])) and (not QUANTITIES[q].log or np.all(values[i] > 0.0)):
-                    change[i] = relative_error(values[i], float(_transformed(ref, q)), q, floor)
-            what = "the largest domain" if part == "domain" else "the tightest tolerance"
+                    change[i] = relative_error(values[i], float(_transformed(references[i], q)), q, floor)
             out[f"{name}_change"] = (("speed", part), change, {"units": "1", "long_name": f"relative change of the {QUANTITIES[q].label} against {what}"})
     out.attrs["notes"] = "; ".join(notes)
     out.attrs["method"] = ("Richardson extrapolation with the observed order of the three finest meshes "
                            "(Celik et al. 2008, J. Fluids Eng. 130:078001); spacing h = 1/(n - 1)")
     return out
+
+
+def reference_values(study: xr.Dataset, part: str, quantity: str) -> tuple[np.ndarray, str]:
+    """(per speed, the value a check's ``part`` is measured against; its description): the
+    largest domain; the tightest tolerance; for the one Newton the nested solver's tightest
+    tolerance where the study has it on the same mesh (the same discrete problem: what is
+    left is the Newton's tolerance and, where the contact has two states, the state it
+    found), else its own tightest."""
+    if part == "domain":
+        return study[f"domain_{quantity}"].values[:, int(np.argmax(study["domain"].values))], "the largest domain"
+    if part == "newton" and "tolerance" in study.dims and study.attrs.get("tolerance_mesh") == study.attrs.get("newton_mesh"):
+        part, what = "tolerance", "the nested solver's tightest tolerance"
+    else:
+        what = "the tightest tolerance"
+    return study[f"{part}_{quantity}"].values[:, int(np.argmin(study[part].values))], what
 
 
 def least_work_index(errors: np.ndarray, work: np.ndarray, target: float) -> int | None:
@@ -396,7 +414,10 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
                                       f"{DOMAIN_RADIUS_FRACTION:g} R, Eq. 4 needs |x| < R: rows with the "
                                       "same x_min were capped there)"),
                            ("tolerance", f"solver tolerance on the {table.attrs.get('tolerance_mesh')}² mesh; "
-                                         "change against the tightest")):
+                                         "change against the tightest"),
+                           ("newton", f"the one Newton (solver.method newton) at each solver tolerance on the "
+                                      f"{table.attrs.get('newton_mesh')}² mesh; change against "
+                                      + reference_values(table, "newton", quantities[0])[1])):
             if part not in table.dims:
                 continue
             lines += ["", f"{what}:", "", f"| {part} | x_min (mm) | solve time (s) | " + " | ".join(QUANTITIES[q].label for q in quantities) + " |",

@@ -34,7 +34,7 @@ QUANTITIES = {
 }
 
 
-STUDY_KEYS = {"scene", "set", "speeds", "meshes", "quantities", "domain", "tolerance", "timing", "targets"}
+STUDY_KEYS = {"scene", "set", "speeds", "meshes", "quantities", "domain", "tolerance", "newton", "timing", "targets"}
 
 
 def study_spec(path, overrides: Mapping | None = None) -> dict:
@@ -77,7 +77,8 @@ def study_points(spec: Mapping) -> list[dict]:
     stays), but never past DOMAIN_RADIUS_FRACTION of the radius: the film-following inlet
     is already long at high speed (6.3 mm of R = 10 mm at 10 m/s on Table 1), and Eq. (4)
     needs |x| < R (the study records each solve's x_min); part "tolerance": solver.tolerance = each of
-    spec["tolerance"]["values"] on mesh spec["tolerance"]["mesh"].
+    spec["tolerance"]["values"] on mesh spec["tolerance"]["mesh"]; part "newton": the same by
+    the one Newton (solver.method newton) for spec["newton"]["values"] on spec["newton"]["mesh"].
     """
     base = load_scene(spec["scene"], spec.get("set") or {})
     points = []
@@ -100,10 +101,11 @@ def study_points(spec: Mapping) -> list[dict]:
                 points.append({"part": "domain", "speed": speed, "key": float(scale), "overrides": {
                     "mesh.nx": nodes_x(reference, far_inlet=False) + left + right, "mesh.ny": n, "mesh.x_min": x_min - left * dx,
                     "mesh.x_max": x_max + right * dx, "mesh.far_inlet": False}})
-        tolerance = spec.get("tolerance")
-        if tolerance:
-            n = int(tolerance["mesh"])
-            for value in tolerance["values"]:
-                points.append({"part": "tolerance", "speed": speed, "key": float(value), "overrides": {
-                    "mesh.nx": n, "mesh.ny": n, "solver.tolerance": float(value)}})
+        for part, method in (("tolerance", {}), ("newton", {"solver.method": "newton"})):
+            ladder = spec.get(part)
+            if ladder:
+                n = int(ladder["mesh"])
+                for value in ladder["values"]:
+                    points.append({"part": part, "speed": speed, "key": float(value), "overrides": {
+                        "mesh.nx": n, "mesh.ny": n, "solver.tolerance": float(value), **method}})
     return points
