@@ -380,7 +380,7 @@ def accuracy_block(study_file: Path | None = None, log=print, keep: Path | None 
             tolerance = (f" Tightening the solver tolerance from its default ({default:g}) to {min(values):g} moves "
                          f"the resistance by at most {100 * change:.2g} %.")
     newton = ""
-    if "newton" in table.dims and "tolerance" in table.dims:
+    if "newton" in table.dims and "tolerance" in table.dims and table.attrs["newton_mesh"] == table.attrs["tolerance_mesh"]:
         by_newton, by_nested = list(table["newton"].values), list(table["tolerance"].values)
         if default in by_newton and default in by_nested:
             k, j = by_newton.index(default), by_nested.index(default)

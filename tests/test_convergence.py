@@ -114,7 +114,7 @@ def test_study_pipeline_on_tiny_meshes(tmp_path):
     text = cv.markdown(table, spec["targets"])
     assert "the one Newton (solver.method newton) at each solver tolerance on the 11² mesh" in text
     # 1 m/s: the far inlet, no inlet columns (the long inlet had 21 + 12, 693 nodes from -2.06 mm)
-    assert "| 21 \u00d7 21 | 441 | -1.11 |" in text and "Cheapest square mesh" in text
+    assert "| 21 \u00d7 21 | 441 | -1.11 |" in text and "Coarsest square mesh" in text
     assert np.all(table["x_min"].values < 0) and table["x_min"].attrs["units"] == "m"
     fig = plot_accuracy_cost(table)
     assert [ax.get_xlabel() for ax in fig.axes] == ["solve time (s)"] * 3

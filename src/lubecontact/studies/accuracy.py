@@ -393,7 +393,7 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
              "mesh.far_inlet false, row 1 its automatic length: its truncation error at that speed; where the ladder's "
              "automatic domain is open to the far inlet, at speeds whose long inlet adds columns, the film upstream is "
              "the flooded one by construction).", ""]
-    lines += ["## Cheapest square mesh for a target error (nodes a side, solve time)", ""]
+    lines += ["## Coarsest square mesh for a target error (nodes a side, its solve time)", ""]
     lines += cost_table(table, quantities, targets)
     for i, speed in enumerate(speeds):
         lines += ["", f"## U = {speed:g} m/s ({table['regime'].values[i]}, fluid carries "
