@@ -251,7 +251,7 @@ def accuracy_table(study: xr.Dataset) -> xr.Dataset:
     - ``q_error`` (speed, mesh): error of each mesh against the extrapolated value;
     - ``domain_q_change`` / ``tolerance_q_change`` / ``newton_q_change``: change against the
       largest domain, the tightest tolerance and, for the one Newton, the nested solver's
-      tightest tolerance (reference_values), in the same error measure;
+      tightest tolerance (check_reference), in the same error measure;
     - ``regime`` (speed): boundary / mixed / full film on the finest mesh.
 
     A quantity that is not finite (an open circuit) or not positive where extrapolated in
@@ -309,7 +309,8 @@ def accuracy_table(study: xr.Dataset) -> xr.Dataset:
             if name not in study:
                 continue
             values = study[name].values
-            references, what = reference_values(study, part, q)
+            against, member, what = check_reference(study, part)
+            references = study[f"{against}_{q}"].values[:, member]
             change = np.full(values.shape, np.nan)
             for i in range(n_speed):
                 if np.all(np.isfinite(values[i])) and (not QUANTITIES[q].log or np.all(values[i] > 0.0)):
@@ -321,19 +322,17 @@ def accuracy_table(study: xr.Dataset) -> xr.Dataset:
     return out
 
 
-def reference_values(study: xr.Dataset, part: str, quantity: str) -> tuple[np.ndarray, str]:
-    """(per speed, the value a check's ``part`` is measured against; its description): the
-    largest domain; the tightest tolerance; for the one Newton the nested solver's tightest
-    tolerance where the study has it on the same mesh (the same discrete problem: what is
-    left is the Newton's tolerance and, where the contact has two states, the state it
-    found), else its own tightest."""
+def check_reference(study: xr.Dataset, part: str) -> tuple[str, int, str]:
+    """(the part, the member and its description) a check's ``part`` is measured against:
+    the largest domain; the tightest tolerance; for the one Newton the nested solver's
+    tightest tolerance where the study has it on the same mesh (the same discrete problem:
+    what is left is the Newton's tolerance and, where the contact has two states, the state
+    it found), else its own tightest."""
     if part == "domain":
-        return study[f"domain_{quantity}"].values[:, int(np.argmax(study["domain"].values))], "the largest domain"
+        return "domain", int(np.argmax(study["domain"].values)), "the largest domain"
     if part == "newton" and "tolerance" in study.dims and study.attrs.get("tolerance_mesh") == study.attrs.get("newton_mesh"):
-        part, what = "tolerance", "the nested solver's tightest tolerance"
-    else:
-        what = "the tightest tolerance"
-    return study[f"{part}_{quantity}"].values[:, int(np.argmin(study[part].values))], what
+        return "tolerance", int(np.argmin(study["tolerance"].values)), "the nested solver's tightest tolerance"
+    return part, int(np.argmin(study[part].values)), "the tightest tolerance"
 
 
 def least_work_index(errors: np.ndarray, work: np.ndarray, target: float) -> int | None:
@@ -416,10 +415,11 @@ def markdown(table: xr.Dataset, targets: Sequence[float] = (0.1, 0.01, 0.001)) -
                            ("tolerance", f"solver tolerance on the {table.attrs.get('tolerance_mesh')}² mesh; "
                                          "change against the tightest"),
                            ("newton", f"the one Newton (solver.method newton) at each solver tolerance on the "
-                                      f"{table.attrs.get('newton_mesh')}² mesh; change against "
-                                      + reference_values(table, "newton", quantities[0])[1])):
+                                      f"{table.attrs.get('newton_mesh')}² mesh; change against")):
             if part not in table.dims:
                 continue
+            if part == "newton":
+                what = f"{what} {check_reference(table, part)[2]}"
             lines += ["", f"{what}:", "", f"| {part} | x_min (mm) | solve time (s) | " + " | ".join(QUANTITIES[q].label for q in quantities) + " |",
                       "|" + "---|" * (3 + len(quantities))]
             for k, key in enumerate(table[part].values):
