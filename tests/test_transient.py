@@ -183,8 +183,12 @@ def test_stop_reconnects_and_the_full_film_volume_balance_closes(rough_stops):
     t = ds["time"].values
     first = np.flatnonzero((t >= 1e-3) & (resistance <= 2 * rest))[0]
     assert t[first - 1] - 1e-3 <= recon <= t[first] - 1e-3
-    # every step: net outflow of the pressurised region (face fluxes) = minus its volume change
-    assert np.max(np.abs(ds["volume_balance"].values)) < 1e-9
+    # every step: net outflow of the pressurised region (face fluxes) = minus its volume change,
+    # to the step's nonlinear tolerance: the one Newton that answers a line contact's step stops
+    # at 0.01 of its error weight (integrator.LINE_NEWTON_FRACTION; 5e-6 here at 1e-4), well
+    # below the step's own tolerance (without its outflow test the balance was off by 0.16 on a
+    # line, docs/physics.md section 20)
+    assert np.max(np.abs(ds["volume_balance"].values)) < 0.1 * 1e-4
     assert np.all(ds["error_estimate"].values <= 1.0)
 
 
@@ -363,8 +367,9 @@ def test_a_stuck_step_gives_up_after_a_few_attempts(monkeypatch):
 
 def test_a_singular_factor_in_a_step_is_a_failed_solve_not_a_crash(monkeypatch):
     """SuperLU raises RuntimeError on an exactly singular factor. Inside a step's nested
-    solve it is a failed nested solve (the Newton's answer stands, or the step is retried
-    shorter), not an exception that ends the run."""
+    solve it is a failed nested solve (the Newton's fallback answers the step, or it is
+    retried shorter), not an exception that ends the run. On a 2-D mesh, where the nested
+    solve answers a step first (a line contact's step is the Newton's)."""
     real_solve = integrator.coupled_solve
     raised = []
 
@@ -375,7 +380,8 @@ def test_a_singular_factor_in_a_step_is_a_failed_solve_not_a_crash(monkeypatch):
         return real_solve(model, initial, **limits)
 
     monkeypatch.setattr(integrator, "coupled_solve", singular_once)
-    scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.02})
+    scene = lc.load_scene(TABLE1, {"mesh.nx": 15, "mesh.ny": 7, "motion.kind": "stop", "motion.duration": 0.02,
+                                   "motion.mesh_error_bar": False})
     series = lc.transient(scene, progress=False)
     assert raised and series["converged"].item() == 1
 
