@@ -185,9 +185,9 @@ def test_stop_reconnects_and_the_full_film_volume_balance_closes(rough_stops):
     assert t[first - 1] - 1e-3 <= recon <= t[first] - 1e-3
     # every step: net outflow of the pressurised region (face fluxes) = minus its volume change,
     # to the step's nonlinear tolerance: the one Newton that answers a line contact's step stops
-    # at 0.01 of its error weight (integrator.LINE_NEWTON_FRACTION; 5e-6 here at 1e-4), well
-    # below the step's own tolerance (without its outflow test the balance was off by 0.16 on a
-    # line, docs/physics.md section 20)
+    # at 0.001 of its error weight (integrator.LINE_NEWTON_FRACTION), well below the step's own
+    # tolerance (without its outflow test the balance was off by 0.16 on a line, docs/physics.md
+    # section 20)
     assert np.max(np.abs(ds["volume_balance"].values)) < 0.1 * 1e-4
     assert np.all(ds["error_estimate"].values <= 1.0)
 
