@@ -34,7 +34,9 @@ def both(overrides: dict):
 
 @pytest.fixture(scope="module")
 def strokes():
-    return both(OSCILLATION)
+    """At motion.tolerance 1e-4: the two meshes compared, not their time integration (at the
+    default 1e-3 the two runs' time errors add up to 0.28 % in the film, forty-third session)."""
+    return both({**OSCILLATION, "motion.tolerance": 1e-4})
 
 
 def test_the_return_stroke_is_as_flooded_as_on_a_symmetric_domain(strokes):
@@ -45,7 +47,9 @@ def test_the_return_stroke_is_as_flooded_as_on_a_symmetric_domain(strokes):
     within 0.25 % and 1 %: measured 0.10-0.18 % for the films and 0.3-0.5 % for the
     resistance, at motion.tolerance 1e-3 and 1e-4 alike (the two meshes' discretisations differ
     at that level, not the time integration), with a time step's Reynolds test in the step's
-    own units and before it (thirty-eighth session)."""
+    own units and before it (thirty-eighth session); since a line contact's steps are the
+    Newton's answers (forty-third session) 0.05-0.09 % and 0.13-0.29 % at 1e-4, where the test
+    runs, and up to 0.28 % and 0.78 % at 1e-3, the time error of the two runs added."""
     automatic, truth = strokes
     assert int(automatic["converged"]) == 1 and int(truth["converged"]) == 1
     for name, tolerance in (("min_film_thickness", 2.5e-3), ("central_film_thickness", 2.5e-3),
