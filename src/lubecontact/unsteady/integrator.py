@@ -133,6 +133,15 @@ class Squeeze:
     floor: float  # m: the film below which the error weight stays absolute (sigma, or FILM_FLOOR)
     fraction: float = NONLINEAR_FRACTION  # of the error weight at which a step's solve stops
 
+    def usual(self) -> Squeeze | None:
+        """These tests at NONLINEAR_FRACTION, where ``fraction`` is tighter (a line step's
+        Newton, LINE_NEWTON_FRACTION), else None: the tests at which that Newton takes the
+        first iterate that met them where it cannot meet its own (model/monolithic_newton.
+        newton_iteration), as the nested solve that used to polish its answers took them."""
+        if self.fraction >= NONLINEAR_FRACTION:
+            return None
+        return dataclasses.replace(self, fraction=NONLINEAR_FRACTION)
+
     def rate(self, expected_gap: np.ndarray) -> np.ndarray:
         return self.coefficient * expected_gap + self.history
 
@@ -383,9 +392,10 @@ def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
     """(state, diagnostics) of one time step from the predictor ``initial``. On a line
     contact (monolithic_newton.dense_step_serves) one Newton (docs/physics.md section 20),
     its tests at LINE_NEWTON_FRACTION of the step's error weight; where it cannot meet them,
-    one Newton at the step's usual NONLINEAR_FRACTION (as a 2-D mesh's or a grease's Newton
-    is judged), then the nested coupled solve (model/coupling.py), each from the same
-    predictor: the first answer that converges, else the failures named. Measured on Table 1 stops: the Newton alone
+    the first of its iterates that met the step's usual NONLINEAR_FRACTION (Squeeze.usual; as a
+    2-D mesh's or a grease's Newton is judged), else the nested coupled solve
+    (model/coupling.py) from the same predictor: the first answer that converges, else both
+    failures named. Measured on Table 1 stops: the Newton alone
     fails on the 201-node line where the nested solve converges, and the nested alone on
     the 20 N stop and at motion.tolerance 1e-5 (tests/test_hard_cases.py). A contact with
     mass and spring (Model.load), a grease, JFO cavitation and solver.method newton have the
@@ -403,11 +413,6 @@ def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
         return nested_then_newton(model, initial, fallback)
     alone = dataclasses.replace(model, squeeze=dataclasses.replace(model.squeeze, fraction=LINE_NEWTON_FRACTION))
     state, diag = monolithic_solve(alone, initial, continuation=False)
-    if diag.converged:
-        return state, diag
-    # a Newton that stalls short of the tight tests (the 51-node line stop at 1e-4 near its
-    # reconnection, tests/test_error_bar.py) is taken at the usual ones, as it was polished before
-    state, diag = monolithic_solve(model, initial, continuation=False)
     if diag.converged:
         return state, diag
     nested_state, nested, why = nested_step(model, initial)
