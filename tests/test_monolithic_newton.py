@@ -222,11 +222,18 @@ def test_the_near_field_preconditioner_inverts_the_reduced_system_when_the_near_
     assert not np.allclose(approximate, y, rtol=0, atol=1e-3)
 
 
+# A fresh count for a kept preconditioner (KeptPreconditioner.keep) under which any reuse within
+# one GMRES cycle keeps it: KEPT_GROWTH times it is GMRES_RESTART
+GMRES_ITERATIONS_FRESH = mn.GMRES_RESTART // mn.KEPT_GROWTH
+
+
 def test_a_kept_preconditioner_gives_the_dense_newton_direction_and_one_that_fails_is_replaced(monkeypatch):
     """The Krylov direction with the preconditioner kept from an earlier iterate
     (KeptPreconditioner) against the dense reduced solve (dense_reduced_solve, no GMRES) at
     the current one: the same direction to GMRES's tolerance, without a new factorisation;
-    a kept preconditioner under which GMRES cannot converge is replaced by a fresh one."""
+    one that needed more than KEPT_GROWTH times its fresh iterations gives the same
+    direction and is dropped for the next; one factorised on another mesh is not used; one
+    under which GMRES cannot converge is replaced by a fresh one."""
     model = Model.assemble(lc.load_scene(TABLE1, {"mesh.nx": 15, "mesh.ny": 9, "operating.speed": 1.0}))
     start = mn.cold_start(model)
     earlier = mn.linearise(model, start)
@@ -237,21 +244,35 @@ def test_a_kept_preconditioner_gives_the_dense_newton_direction_and_one_that_fai
     build = mn.NearFieldPreconditioner.build
     monkeypatch.setattr(mn.NearFieldPreconditioner, "build", lambda *args: built.append(1) or build(*args))
     weight = earlier.film_scale / model.scene.operating.force
-    kept = mn.KeptPreconditioner(build(model, earlier, weight))
+    near = build(model, earlier, weight)
+    kept = mn.KeptPreconditioner()
+    kept.keep(near, model.mesh, GMRES_ITERATIONS_FRESH)
     reused = mn.newton_direction(model, later, 1e-10, kept=kept)
-    assert not built
+    assert not built and kept.preconditioner is near
     for a, b in zip(reused[:3], dense[:3]):
         np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-6 * np.max(np.abs(b)))
 
+    kept.keep(near, model.mesh, 1)  # as if fresh it had needed one iteration: now it needs more than KEPT_GROWTH
+    stale = mn.newton_direction(model, later, 1e-10, kept=kept)
+    assert not built and kept.preconditioner is None
+    for a, b in zip(stale[:3], dense[:3]):
+        np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-6 * np.max(np.abs(b)))
+
+    other = Model.assemble(lc.load_scene(TABLE1, {"mesh.nx": 15, "mesh.ny": 9, "operating.speed": 1.0})).mesh
+    kept.keep(near, other, GMRES_ITERATIONS_FRESH)  # the same sizes, another mesh (a rest domain's)
+    mn.newton_direction(model, later, 1e-10, kept=kept)
+    assert built == [1] and kept.preconditioner is not near and kept.mesh is model.mesh
+
     class Scrambled:  # a diagonal of random signs over six decades: GMRES needs far more than a cycle
         scale = np.random.default_rng(2).choice([-1.0, 1.0], dense[1].size + 1) * np.logspace(-3, 3, dense[1].size + 1)
+        unknowns = near.unknowns
 
         def apply(self, v):
             return self.scale * v
 
-    kept = mn.KeptPreconditioner(Scrambled())
+    kept.keep(Scrambled(), model.mesh, GMRES_ITERATIONS_FRESH)
     replaced = mn.newton_direction(model, later, 1e-10, kept=kept)
-    assert built == [1] and isinstance(kept.preconditioner, mn.NearFieldPreconditioner)
+    assert built == [1, 1] and isinstance(kept.preconditioner, mn.NearFieldPreconditioner)
     for a, b in zip(replaced[:3], dense[:3]):
         np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-6 * np.max(np.abs(b)))
 

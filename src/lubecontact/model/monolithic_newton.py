@@ -76,6 +76,7 @@ from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.cavitation_jfo import JFOSolution, upwind_content
 from lubecontact.numerics.complementarity import fischer_burmeister
 from lubecontact.numerics.jfo_outflow import content_field, mass_conserving_outflow
+from lubecontact.numerics.mesh import Mesh
 from lubecontact.numerics.reynolds import ReynoldsSolution, interior_nodes, reynolds_system, solve_reynolds
 from lubecontact.numerics.reynolds_jacobian import (LinearOutflow, exterior_film_jacobian, outflow_film_jacobian,
                                                      squeeze_film_jacobian, with_scale_floor)
@@ -122,6 +123,15 @@ FILM_STEP_FRACTION = 0.9
 GMRES_FORCING = 1e-3
 GMRES_RESTART = 30
 GMRES_CYCLES = 10
+# A kept preconditioner (KeptPreconditioner) is factorised anew for the next direction once
+# GMRES needs more than this many times the iterations it needed with it fresh: it has gone
+# stale. Kept across the time steps of a run, measured on the Table 1 stop with one Newton a
+# step (solver.method newton, bench/EXPERIMENTS.md, forty-fourth session), CPU s kept within a
+# solve only / across the steps without a refresh / with it at 3: 51 x 51 21.4 / 13.7 / 14.8
+# (112 / 15 / 23 factorisations), 31 x 15 3.55 / 4.72 / 3.43, 23 x 11 1.80 / 2.05 / 1.83,
+# 21 x 9 4.03 / 4.38 / 4.24; at 2 the 51 x 51 stop took 18.1 s (46 factorisations, 6 more
+# steps). On the small meshes the stale factors needed 10-30 iterations against 2-4 fresh.
+KEPT_GROWTH = 3
 # GMRES is preconditioned by the same reduced system with K cut to its near field, the
 # influence coefficients between nodes at most this many nodes apart along each axis
 # (NearFieldPreconditioner). Measured on Table 1 time steps at 51 x 51 (bench/EXPERIMENTS.md,
@@ -567,11 +577,29 @@ class NearFieldPreconditioner:
 
 @dataclass
 class KeptPreconditioner:
-    """The NearFieldPreconditioner an earlier step of the same Newton solve factorised, which
-    krylov_reduced_solve reuses while GMRES meets its tolerance with it within one restart
-    cycle (GMRES_RESTART iterations, about one factorisation's time), else factorises anew."""
+    """The NearFieldPreconditioner an earlier Newton step factorised on ``mesh``: of the same
+    solve, or in time of an earlier step of the run on that mesh (Squeeze.preconditioner; each
+    time step changes c0 and the film a little, as the Newton steps of one solve change the
+    film). krylov_reduced_solve reuses it while GMRES meets its tolerance with it within one
+    restart cycle (GMRES_RESTART iterations, about one factorisation's time), else factorises
+    anew, and factorises anew for the next direction once it needs more than KEPT_GROWTH times
+    the iterations it needed fresh."""
 
     preconditioner: NearFieldPreconditioner | None = None
+    mesh: Mesh | None = None  # the mesh it was factorised on
+    fresh_iterations: int = 0  # GMRES iterations of the direction it was factorised for
+
+    def serves(self, mesh: Mesh, unknowns: int) -> bool:
+        """Whether a preconditioner is kept for ``mesh`` with that many Reynolds unknowns."""
+        return self.preconditioner is not None and self.mesh is mesh and self.preconditioner.unknowns == unknowns
+
+    def keep(self, preconditioner: NearFieldPreconditioner | None, mesh: Mesh, iterations: int):
+        self.preconditioner, self.mesh, self.fresh_iterations = preconditioner, mesh, iterations
+
+    def used(self, iterations: int):
+        """Drop the preconditioner where it needed ``iterations``, more than KEPT_GROWTH times its fresh count."""
+        if iterations > KEPT_GROWTH * max(self.fresh_iterations, 1):
+            self.preconditioner = None
 
 
 def krylov_reduced_solve(model: Model, lin: Linearisation, pressure_response, weight: float, rhs: np.ndarray,
@@ -606,14 +634,15 @@ def krylov_reduced_solve(model: Model, lin: Linearisation, pressure_response, we
         return y, (info if np.all(np.isfinite(y)) else -1), len(iterations)
 
     fluid = lin.j_pp is not None and lin.j_pp.shape[0]
-    if fluid and kept is not None and kept.preconditioner is not None:
+    if fluid and kept is not None and kept.serves(mesh, lin.j_pp.shape[0]):
         y, info, iterations = attempt(kept.preconditioner)
         if info == 0 and iterations <= GMRES_RESTART:
+            kept.used(iterations)
             return y
     near = NearFieldPreconditioner.build(model, lin, weight) if fluid else None
+    y, info, iterations = attempt(near)
     if kept is not None:
-        kept.preconditioner = near
-    y, info, _ = attempt(near)
+        kept.keep(near, mesh, iterations)
     if info != 0:
         raise RuntimeError(f"GMRES of the Newton step did not reach its tolerance {target:.2g} m (info {info})")
     return y
@@ -769,7 +798,7 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
     stiffness = None
     forcing = 0.1
     influence = dense_influence(model)
-    kept = KeptPreconditioner()
+    kept = KeptPreconditioner() if model.squeeze is None else model.squeeze.preconditioner
     history = [lin.merit()]
     memory = NONMONOTONE_MEMORY if yield_stress_law(model) is None else 1
     best = (lin, None)  # the iterate of least merit, and dF/dz of its Newton direction

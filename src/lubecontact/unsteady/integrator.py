@@ -54,7 +54,8 @@ import numpy as np
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.fluid_film import FLUID_FILM_FLOOR_SIGMAS, squeeze_content
 from lubecontact.model.model import Model, SolveError
-from lubecontact.model.monolithic_newton import dense_step_serves, monolithic_solve, needs_newton, steady_solve
+from lubecontact.model.monolithic_newton import (KeptPreconditioner, dense_step_serves, monolithic_solve, needs_newton,
+                                                steady_solve)
 from lubecontact.numerics.cavitation_jfo import JFOSolution
 from lubecontact.numerics.mesh import build_mesh, mirrored_mesh, rest_mesh
 from lubecontact.numerics.transfer import interpolate_field, spline_along_x
@@ -132,6 +133,8 @@ class Squeeze:
     tolerance: float  # motion.tolerance: the step's relative local error
     floor: float  # m: the film below which the error weight stays absolute (sigma, or FILM_FLOOR)
     fraction: float = NONLINEAR_FRACTION  # of the error weight at which a step's solve stops
+    # the one Newton's preconditioner, kept across the steps of a run (TimeIntegrator.preconditioner)
+    preconditioner: KeptPreconditioner = dataclasses.field(default_factory=KeptPreconditioner)
 
     def usual(self) -> Squeeze | None:
         """These tests at NONLINEAR_FRACTION, where ``fraction`` is tighter (a line step's
@@ -563,6 +566,7 @@ class TimeIntegrator:
         self.rejected = 0
         self.step_backs = []  # (time of the dropped level, time returned to) of each step back (run)
         self.fallback = NewtonFallback()
+        self.preconditioner = KeptPreconditioner()  # the one Newton's, reused across steps while it serves
 
     def rest_domain(self) -> Model | None:
         """The model a motion's steps go on with at rest, on its mesh at rest
@@ -651,7 +655,7 @@ class TimeIntegrator:
             earlier = levels[::-1][:order]
             load = self.dynamics.load(t_new, levels[0].state.z, c, [lv.state.z for lv in earlier],
                                       [lv.velocity for lv in earlier])
-        squeeze = Squeeze(c[0], history, scale, self.tolerance, self.floor)
+        squeeze = Squeeze(c[0], history, scale, self.tolerance, self.floor, preconditioner=self.preconditioner)
         model = dataclasses.replace(
             self.step_model, scene=scene_at(self.scene, speed), squeeze=squeeze,
             hydrodynamic=bool(self.scene.effects.hydrodynamics), load=load,
