@@ -116,6 +116,43 @@ def test_assembled_outflow_is_the_slot_law_on_a_uniform_film():
     np.testing.assert_allclose(flow.scale, secant[1:] + secant[:-1], rtol=1e-9)
 
 
+def test_a_2d_face_takes_the_whole_gradient_through_the_law():
+    """Isotropy: on a smooth uniform 2-D film under a pressure quadratic along 45 degrees, each
+    interior cell's outflow is that of the slot law's flux vector q(|grad p|) grad p/|grad p|
+    through its four faces, grad p exact at each face's midpoint (the module docstring's
+    differences are exact for a quadratic). The gradients' magnitudes lie above the yield
+    limit and their components across the faces below it: a face that saw only the gradient
+    across it (until the forty-fourth session) held a plug there."""
+    mesh = model_of({"effects.asperity_contact": False, "effects.elastic_deformation": False, "mesh.nx": 21,
+                     "mesh.ny": 17, "operating.speed": 1.0}).mesh
+    law = YieldStressLaw(consistency=0.1, yield_stress=300.0, flow_index=1.0, creep_viscosity=1e4)
+    h = 2e-6
+    film = np.full(mesh.shape, h)
+    newtonian = film**3 / (12 * law.consistency)
+    limit = 2 * law.yield_stress / h
+    x, y = np.meshgrid(mesh.x - mesh.x.mean(), mesh.y, indexing="xy")
+    xi, span = (x + y) / np.sqrt(2.0), (np.ptp(mesh.x) + np.ptp(mesh.y)) / np.sqrt(2.0)
+    slope = lambda s: limit * (1.2 + 0.3 * s / span)  # dP/dxi: 1.05 to 1.35 times the limit over the domain
+    pressure = limit * (1.2 * xi + 0.15 * xi**2 / span)
+    system = reynolds_system(mesh, film, newtonian, 0.0)
+    flow = yield_stress_outflow(mesh, system, pressure, newtonian, film, np.ones(mesh.shape), 0.0, law,
+                                coefficient_slope=3 * newtonian / film)
+
+    def face_flux(fx, fy):  # the slot law's flux vector (m^2/s) at points (fx, fy), grad p along 45 degrees
+        g = slope((fx + fy) / np.sqrt(2.0))
+        q = slot_flux(g, h, law)[0]  # along +grad p: negative (down the gradient)
+        return q / np.sqrt(2.0), q / np.sqrt(2.0)
+
+    dx, dy = mesh.dx, mesh.dy
+    out = (face_flux(x + dx / 2, y)[0] - face_flux(x - dx / 2, y)[0]) * dy \
+        + (face_flux(x, y + dy / 2)[1] - face_flux(x, y - dy / 2)[1]) * dx
+    interior = np.zeros(mesh.shape, dtype=bool)
+    interior[1:-1, 1:-1] = True
+    assert np.array_equal(interior, system.unknown)
+    assert np.all(slope(xi) > limit) and np.all(slope(xi) / np.sqrt(2.0) < limit)
+    np.testing.assert_allclose(flow.outflow, out[interior], rtol=1e-7, atol=1e-7 * np.abs(out[interior]).max())
+
+
 def test_bingham_pressure_tends_to_the_newtonian_one_and_newton_converges_fast():
     newtonian = lc.solve(lc.load_scene(TABLE1, SMOOTH_LINE), fields=True)
     p_n = newtonian["fluid_pressure"].values

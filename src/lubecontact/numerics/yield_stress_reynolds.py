@@ -1,37 +1,44 @@
 """The finite-volume Reynolds outflow of a yield-stress lubricant and its Jacobian
 (docs/physics.md section 21).
 
-With a grease the Poiseuille flux of a face depends on the face's own pressure gradient
-(physics/yield_stress_flow.py). On the face between nodes a and b (x faces; y faces alike
-with dy) the gradient along the face normal is G_f = (p_b - p_a)/dx (in 2-D the tangential
-gradient is neglected: each face sees the gradient across it), and the face flux is
+With a grease the Poiseuille flux of a face depends on the pressure gradient at the face
+(physics/yield_stress_flow.py): the flux vector is -k_eff(|grad p|, s) grad p, so its
+normal component on the face between nodes a and b (x faces; y faces alike with dy) is
 
-    flux_f = T_f r_f (p_a - p_b) + (U/2) dy h_T,f,      r_f = r(G_f, s_f),
+    flux_f = T_f r_f (p_a - p_b) + (U/2) dy h_T,f,      r_f = r(|G_f|, s_f),
 
-T_f the Newtonian transmissibility (numerics/reynolds.py), r the law's reduction factor
-k_eff(G, s)/(s^3/(12 K)) and s_f = (h_T,a + h_T,b)/2 the film content of the face (the
-slot the law sees; h itself on smooth surfaces). On rough surfaces r multiplies the
-Patir-Cheng coefficient: an approximation, exact for smooth films. The net outflow of cell i
-is w_i = sum_f (+-) flux_f, as reynolds.reynolds_system's A p - b, now with A = A(p).
+with G_f = (G_n, G_t): G_n = (p_b - p_a)/dx across the face, and in 2-D G_t along it, the
+mean of the two nodes' differences along y (central, one-sided at the domain's edge;
+cross_gradient_operators), both exact at the face's midpoint for a quadratic pressure. T_f
+is the Newtonian transmissibility (numerics/reynolds.py), r the law's reduction factor
+k_eff(G, s)/(s^3/(12 K)) and s_f = (h_T,a + h_T,b)/2 the film content of the face (the slot
+the law sees; h itself on smooth surfaces). On rough surfaces r multiplies the Patir-Cheng
+coefficient: an approximation, exact for smooth films. The net outflow of cell i is
+w_i = sum_f (+-) flux_f, as reynolds.reynolds_system's A p - b, now with A = A(p). Until the
+forty-fourth session each face saw G_n alone: a plug then held its pressure along staircase
+paths, and carried more than the law lets it (docs/physics.md section 21).
 
-Its derivatives: d flux_f/dp_a = -d flux_f/dp_b = T_f d(r G)/dG (the tangent
-transmissibility, >= 0), and d flux_f/dh_a = (1/2)(dk/dh_a (dy/dx) r_f + T_f dr/ds dh_T/dh_a)
-(p_a - p_b) + the Couette slope. The residual of the one-Newton solver divides w by the
-cell's secant diagonal s_i = sum_f T_f r_f, which depends on p and h as well. Each is
-assembled face by face as a sparse matrix (reynolds_jacobian.assembled).
+Its derivatives: d flux_f/dp_a = -d flux_f/dp_b = T_f (r + G_n dr/dG_n) (the tangent
+transmissibility, >= 0), d flux_f/dp_k = T_f (p_a - p_b) dr/dG_t dG_t/dp_k at the nodes k
+that G_t reads, with dr/dG_n = r' G_n/|G| and dr/dG_t = r' G_t/|G|, and d flux_f/dh_a =
+(1/2)(dk/dh_a (dy/dx) r_f + T_f dr/ds dh_T/dh_a)(p_a - p_b) + the Couette slope. The residual
+of the one-Newton solver divides w by the cell's secant diagonal s_i = sum_f T_f r_f, which
+depends on p and h as well. Each is assembled face by face as a sparse matrix
+(reynolds_jacobian.assembled; the G_t terms through the faces' incidence, face_rows).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 import scipy.sparse as sp
 
 from lubecontact.numerics.reynolds import ReynoldsSystem, face_transmissibilities
 from lubecontact.numerics.reynolds_jacobian import assembled, face_slope_pairs
+from lubecontact.numerics.reynolds_pattern import unknown_numbers
 from lubecontact.physics.percolation import face_films
 from lubecontact.physics.yield_stress_flow import YieldStressLaw, effective_coefficient
 
@@ -76,6 +83,47 @@ def reduction_factor(gradient, content, law: YieldStressLaw):
     return k / newtonian, k_g / newtonian, (k_s - 3.0 * k / content) / newtonian
 
 
+@lru_cache(maxsize=8)
+def cross_gradient_operators(ny: int, nx: int, dx: float, dy: float) -> tuple[sp.csr_matrix, sp.csr_matrix] | None:
+    """(dG_t/dp of the x faces, of the y faces): (faces in C order, nodes) matrices of the
+    pressure gradient along each face, the mean of its two nodes' differences (central, one-
+    sided at the domain's edge, as numpy.gradient); None on a line (one row: no gradient along y)."""
+    if ny == 1:
+        return None
+
+    def difference(n, spacing):  # (n, n): d/ds at each of n nodes
+        rows = np.arange(n)
+        lower, upper = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
+        weight = 1.0 / ((upper - lower) * spacing)
+        return sp.csr_matrix((np.concatenate([weight, -weight]), (np.concatenate([rows, rows]),
+                                                                   np.concatenate([upper, lower]))), shape=(n, n))
+
+    def mean(n):  # (n - 1, n): the mean of each pair of neighbours
+        rows = np.arange(n - 1)
+        return sp.csr_matrix((np.full(2 * (n - 1), 0.5), (np.concatenate([rows, rows]),
+                                                          np.concatenate([rows, rows + 1]))), shape=(n - 1, n))
+
+    along_y = sp.kron(difference(ny, dy), sp.identity(nx))
+    along_x = sp.kron(sp.identity(ny), difference(nx, dx))
+    return ((sp.kron(sp.identity(ny), mean(nx)) @ along_y).tocsr(), (sp.kron(mean(ny), sp.identity(nx)) @ along_x).tocsr())
+
+
+def face_rows(unknown, a, b, sign_b: float) -> sp.csr_matrix:
+    """(unknowns, faces) incidence: 1 in the row of each face's node a and ``sign_b`` in its
+    node b's, where those are unknowns (faces in C order of the arrays a and b)."""
+    number = unknown_numbers(unknown).ravel()
+    faces = np.arange(a.size)
+    rows, cols, vals = [], [], []
+    for node, sign in ((a.ravel(), 1.0), (b.ravel(), sign_b)):
+        owner = number[node]
+        keep = owner >= 0
+        rows.append(owner[keep])
+        cols.append(faces[keep])
+        vals.append(np.full(int(keep.sum()), sign))
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(int(unknown.sum()), a.size))
+
+
 def yield_stress_outflow(mesh, system: ReynoldsSystem, pressure, coefficient, content, content_slope, speed,
                          law: YieldStressLaw, faces=None, face_slopes=None, coefficient_slope=None,
                          added_outflow_film: Callable[[], sp.csr_matrix] | None = None) -> YieldStressOutflow:
@@ -94,24 +142,35 @@ def yield_stress_outflow(mesh, system: ReynoldsSystem, pressure, coefficient, co
     net = np.zeros(mesh.shape)
     scale = np.zeros(mesh.shape)
     flow_p, scale_p, flow_h, scale_h = [], [], [], []
+    cross_p = []  # (a, b, d flux/dG_t, d(T r)/dG_t, dG_t/dp) of each direction's faces, in 2-D
+    operators = cross_gradient_operators(ny, nx, mesh.dx, mesh.dy)
     directions = (
         (tx, sx, mesh.dx, mesh.dy / mesh.dx, (slice(None), slice(None, -1)), (slice(None), slice(1, None)),
-         slope_pairs[0][:2]),
+         slope_pairs[0][:2], None if operators is None else operators[0]),
         (ty, sy, mesh.dy, mesh.dx / mesh.dy, (slice(None, -1), slice(None)), (slice(1, None), slice(None)),
-         slope_pairs[1]),
+         slope_pairs[1], None if operators is None else operators[1]),
     )
-    for t, s, spacing, geometry, side_a, side_b, (dk_a, dk_b) in directions:
+    for t, s, spacing, geometry, side_a, side_b, (dk_a, dk_b), cross in directions:
         drop = pressure[side_a] - pressure[side_b]
-        r, r_g, r_s = reduction_factor(-drop / spacing, s, law)
+        normal = -drop / spacing
+        along_face = np.zeros(drop.shape) if cross is None else (cross @ pressure.ravel()).reshape(drop.shape)
+        magnitude = np.hypot(normal, along_face)
+        signed = np.where(normal < 0.0, -magnitude, magnitude)  # |G| with the sign of G_n (normal where G_t = 0)
+        r, r_g, r_s = reduction_factor(signed, s, law)  # r_g = sign(G_n) r'(|G|)
+        moving = magnitude > 0.0
+        across = np.divide(np.abs(normal), magnitude, out=np.ones(drop.shape), where=moving)  # (dr/dG_n) / r_g
+        tangential = np.divide(np.sign(signed) * along_face, magnitude, out=np.zeros(drop.shape), where=moving)
         flux = t * r * drop
         net[side_a] += flux
         net[side_b] -= flux
         scale[side_a] += t * r
         scale[side_b] += t * r
         a, b = flat[side_a], flat[side_b]
-        tangent = t * (r - drop / spacing * r_g)  # T d(r G)/dG
+        tangent = t * (r - drop / spacing * r_g * across)  # T (r + G_n dr/dG_n)
         flow_p.append((a, b, tangent, -tangent, 1.0, -1.0))
-        scale_p.append((a, b, -t * r_g / spacing, t * r_g / spacing, 1.0, 1.0))
+        scale_p.append((a, b, -t * r_g * across / spacing, t * r_g * across / spacing, 1.0, 1.0))
+        if cross is not None:
+            cross_p.append((a, b, t * drop * r_g * tangential, t * r_g * tangential, cross))
         ds_a, ds_b = 0.5 * content_slope[side_a], 0.5 * content_slope[side_b]
         dt_a, dt_b = 0.5 * dk_a * geometry, 0.5 * dk_b * geometry
         flow_h.append((a, b, (dt_a * r + t * r_s * ds_a) * drop, (dt_b * r + t * r_s * ds_b) * drop, 1.0, -1.0))
@@ -125,7 +184,11 @@ def yield_stress_outflow(mesh, system: ReynoldsSystem, pressure, coefficient, co
         outflow_film = assembled(mesh, unknown, flow_h)
         if added_outflow_film is not None:
             outflow_film = outflow_film + added_outflow_film()
-        return (assembled(mesh, unknown, flow_p)[:, columns].tocsc(), assembled(mesh, unknown, scale_p)[:, columns],
-                outflow_film, assembled(mesh, unknown, scale_h))
+        outflow_pressure, scale_pressure = assembled(mesh, unknown, flow_p), assembled(mesh, unknown, scale_p)
+        for a, b, flux_slope, scale_slope, cross in cross_p:
+            outflow_pressure = outflow_pressure + face_rows(unknown, a, b, -1.0) @ sp.diags(flux_slope.ravel()) @ cross
+            scale_pressure = scale_pressure + face_rows(unknown, a, b, 1.0) @ sp.diags(scale_slope.ravel()) @ cross
+        return (outflow_pressure[:, columns].tocsc(), scale_pressure[:, columns], outflow_film,
+                assembled(mesh, unknown, scale_h))
 
     return YieldStressOutflow(outflow=net[unknown] - system.rhs, scale=scale[unknown], blocks=blocks)

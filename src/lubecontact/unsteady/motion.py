@@ -114,12 +114,10 @@ def motion_problems(scene) -> list[str]:
             )
     if scene.lubricant.rheology != "newtonian" and scene.motion.kind != "steady" and scene.mesh.ny > 1:
         problems.append(
-            f"lubricant.rheology = {scene.lubricant.rheology!r} with a motion on a 2-D mesh: a grease's 2-D law "
-            "lets each face see only the pressure gradient across it, so a plug holds its pressure along "
-            "staircase paths and carries more load than it can (a smooth rigid Table 1 stop would come to rest "
-            "at 0.149 um against 0.124 um), and its steps fail on meshes fine enough for the plug (41 x 21) or "
-            "take minutes (the rough connector's stop, 3 min on 51 x 51; docs/physics.md section 21); allowed: "
-            "mesh.ny = 1, or a 'newtonian' lubricant"
+            f"lubricant.rheology = {scene.lubricant.rheology!r} with a motion on a 2-D mesh: a grease's time steps "
+            "fail there where the plug forms at rest (the connector's Bingham stop on 21 x 21 at t = 6.3 s, a "
+            "Newton step finding no descent), and their face-flux volume balance is a line's (docs/physics.md "
+            "section 21); allowed: mesh.ny = 1, or a 'newtonian' lubricant"
         )
     m = scene.motion
     if m.vibration in ("sine_sweep", "random") and not m.vibration_frequency_end > m.vibration_frequency:
