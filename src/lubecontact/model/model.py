@@ -38,16 +38,34 @@ class SolveError(RuntimeError):
 
 
 class SqueezeTerm(Protocol):
-    """A transient step's time derivative of the film content h_T (unsteady/integrator.py)."""
+    """A transient step's time derivative of the film content h_T and the step's stopping
+    tests (unsteady/integrator.Squeeze, where each is described)."""
 
     coefficient: float  # d rate / d h_T, 1/s
+    history: np.ndarray  # the BDF history part of the rate, m/s
     film_scale: float  # m, a length on which the force changes
+    preconditioner: object  # the one Newton's, kept across a run's steps (monolithic_newton.KeptPreconditioner)
 
     def rate(self, expected_gap: np.ndarray) -> np.ndarray:
         """dh_T/dt (m/s) at each node for the film content ``expected_gap`` (m)."""
 
     def settled(self, film: np.ndarray, correction: np.ndarray) -> bool:
         """Whether a film correction (m, per node) meets the step's stopping test."""
+
+    def settled_position(self, displacement: float) -> bool:
+        """Whether the displacement (m) that would close the force balance meets it."""
+
+    def settled_pressure(self, residual: float) -> bool:
+        """Whether a Reynolds residual (relative to the peak pressure) meets it."""
+
+    def settled_outflow(self, outflow: np.ndarray, cell_area: np.ndarray, film: np.ndarray) -> bool:
+        """Whether each cell's outflow left over (m^3/s) meets it."""
+
+    def outflow_scale_floor(self, cell_area: np.ndarray, pressure: float) -> np.ndarray:
+        """The smallest scale (m^3/(Pa s)) of a cell's outflow in the Newton's residual."""
+
+    def usual(self) -> SqueezeTerm | None:
+        """These tests at the usual fraction where the step's own are tighter, else None."""
 
 
 class AppliedLoad(Protocol):
