@@ -594,6 +594,7 @@ class KeptPreconditioner:
         return self.preconditioner is not None and self.mesh is mesh and self.preconditioner.unknowns == unknowns
 
     def keep(self, preconditioner: NearFieldPreconditioner | None, mesh: Mesh, iterations: int):
+        """Keep a fresh ``preconditioner`` of ``mesh``, under which GMRES needed ``iterations``."""
         self.preconditioner, self.mesh, self.fresh_iterations = preconditioner, mesh, iterations
 
     def used(self, iterations: int):
@@ -776,8 +777,8 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
     (usual_tests: a line step's) takes, where it cannot meet them, the first iterate that met
     the usual ones, else, where it stalled, its best iterate if that meets them stalled
     (converged): the answer a second Newton from the same start judged by the usual tests would
-    give, without its iterations (the 100 Pa s fretting of tests/test_hard_cases.py ran its
-    stalled steps twice so; bench/EXPERIMENTS.md, forty-fourth session)."""
+    give, without running its iterations again (as step_solve did until the forty-fourth
+    session: the same steps and answers to the last bit, bench/EXPERIMENTS.md)."""
     it = start
     floor = open_film_diagonal(model) if open_film_floor else None
     try:
