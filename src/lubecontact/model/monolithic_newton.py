@@ -789,6 +789,11 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
     usual = usual_tests(model)
     passed = None  # (linearisation, iterations, dF/dz) of the first iterate that met the usual tests
 
+    def check_usual(lin, iteration, stiffness, stalled=False):
+        nonlocal passed
+        if passed is None and usual is not None and converged(usual, lin, tolerance, stiffness, stalled):
+            passed = (lin, iteration, stiffness)
+
     def failed(lin, iteration, stiffness, failure):
         if passed is not None:
             return (*passed, "")
@@ -806,15 +811,12 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
     for iteration in range(1, max_iterations + 1):
         if converged(model, lin, tolerance, stiffness):
             return lin, iteration - 1, stiffness, ""
-        if passed is None and usual is not None and converged(usual, lin, tolerance, stiffness):
-            passed = (lin, iteration - 1, stiffness)
+        check_usual(lin, iteration - 1, stiffness)
         if len(history) > STALL_ITERATIONS and history[-1] > STALL_FACTOR * history[-1 - STALL_ITERATIONS]:
             best_lin, best_stiffness = best[0], stiffness if best[1] is None else best[1]
             if converged(model, best_lin, tolerance, best_stiffness, stalled=True):
                 return best_lin, iteration - 1, best_stiffness, ""
-            if passed is None and usual is not None and converged(usual, best_lin, tolerance, best_stiffness,
-                                                                  stalled=True):
-                passed = (best_lin, iteration - 1, best_stiffness)
+            check_usual(best_lin, iteration - 1, best_stiffness, stalled=True)
             return failed(lin, iteration, stiffness, (
                 f"Newton stalled: the scaled residual norm fell from {np.sqrt(2 * history[-1 - STALL_ITERATIONS]):.3g} "
                 f"only to {np.sqrt(2 * history[-1]):.3g} in {STALL_ITERATIONS} iterations"))
@@ -854,8 +856,7 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
             best = (lin, None)
     if converged(model, lin, tolerance, stiffness):
         return lin, max_iterations, stiffness, ""
-    if passed is None and usual is not None and converged(usual, lin, tolerance, stiffness):
-        passed = (lin, max_iterations, stiffness)
+    check_usual(lin, max_iterations, stiffness)
     return failed(lin, max_iterations, stiffness, f"{max_iterations} Newton iterations without meeting the tolerances")
 
 

@@ -24,7 +24,7 @@ that G_t reads, with dr/dG_n = r' G_n/|G| and dr/dG_t = r' G_t/|G|, and d flux_f
 (1/2)(dk/dh_a (dy/dx) r_f + T_f dr/ds dh_T/dh_a)(p_a - p_b) + the Couette slope. The residual
 of the one-Newton solver divides w by the cell's secant diagonal s_i = sum_f T_f r_f, which
 depends on p and h as well. Each is assembled face by face as a sparse matrix
-(reynolds_jacobian.assembled; the G_t terms through the faces' incidence, face_rows).
+(reynolds_jacobian.assembled; the G_t terms through each side's rows, node_rows).
 """
 
 from __future__ import annotations
@@ -108,20 +108,13 @@ def cross_gradient_operators(ny: int, nx: int, dx: float, dy: float) -> tuple[sp
     return ((sp.kron(sp.identity(ny), mean(nx)) @ along_y).tocsr(), (sp.kron(mean(ny), sp.identity(nx)) @ along_x).tocsr())
 
 
-def face_rows(unknown, a, b, sign_b: float) -> sp.csr_matrix:
-    """(unknowns, faces) incidence: 1 in the row of each face's node a and ``sign_b`` in its
-    node b's, where those are unknowns (faces in C order of the arrays a and b)."""
-    number = unknown_numbers(unknown).ravel()
-    faces = np.arange(a.size)
-    rows, cols, vals = [], [], []
-    for node, sign in ((a.ravel(), 1.0), (b.ravel(), sign_b)):
-        owner = number[node]
-        keep = owner >= 0
-        rows.append(owner[keep])
-        cols.append(faces[keep])
-        vals.append(np.full(int(keep.sum()), sign))
-    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                         shape=(int(unknown.sum()), a.size))
+def node_rows(unknown, nodes) -> sp.csr_matrix:
+    """(unknowns, faces) selection: 1 in the row of each face's node in ``nodes`` (one side's
+    nodes, in C order of the faces) where that node is an unknown."""
+    owner = unknown_numbers(unknown).ravel()[nodes.ravel()]
+    keep = owner >= 0
+    return sp.csr_matrix((np.ones(int(keep.sum())), (owner[keep], np.flatnonzero(keep))),
+                         shape=(int(unknown.sum()), nodes.size))
 
 
 def yield_stress_outflow(mesh, system: ReynoldsSystem, pressure, coefficient, content, content_slope, speed,
@@ -186,8 +179,9 @@ def yield_stress_outflow(mesh, system: ReynoldsSystem, pressure, coefficient, co
             outflow_film = outflow_film + added_outflow_film()
         outflow_pressure, scale_pressure = assembled(mesh, unknown, flow_p), assembled(mesh, unknown, scale_p)
         for a, b, flux_slope, scale_slope, cross in cross_p:
-            outflow_pressure = outflow_pressure + face_rows(unknown, a, b, -1.0) @ sp.diags(flux_slope.ravel()) @ cross
-            scale_pressure = scale_pressure + face_rows(unknown, a, b, 1.0) @ sp.diags(scale_slope.ravel()) @ cross
+            on_a, on_b = node_rows(unknown, a), node_rows(unknown, b)
+            outflow_pressure = outflow_pressure + (on_a - on_b) @ sp.diags(flux_slope.ravel()) @ cross
+            scale_pressure = scale_pressure + (on_a + on_b) @ sp.diags(scale_slope.ravel()) @ cross
         return (outflow_pressure[:, columns].tocsc(), scale_pressure[:, columns], outflow_film,
                 assembled(mesh, unknown, scale_h))
 
