@@ -7,6 +7,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from scipy.optimize import brentq
 
 import lubecontact as lc
 from lubecontact.model.coupling import coupled_solve
@@ -167,6 +168,59 @@ def test_bingham_pressure_tends_to_the_newtonian_one_and_newton_converges_fast()
     assert changes[1] / changes[0] == pytest.approx(10.0, rel=0.05)
     assert changes[2] / changes[1] == pytest.approx(10.0, rel=0.1)
     assert changes[0] < 1e-4
+
+
+def shooting_bingham_film(radius, length, viscosity, yield_stress, speed, force, x_in, x_out, nodes=4001):
+    """The minimum film (m) of a rigid cylinder on a flat carrying ``force`` on a Bingham film
+    (Couette U h/2 plus the Buckingham-Reiner slot flux, written here from the formula, no
+    creep), by shooting: the flux q = U h(x_c)/2 is constant where the film is pressurised
+    (p = 0 at the inlet x_in and at the film's rupture x_c, beyond which the film carries no
+    pressure flux: the Reynolds condition for a law whose flux vanishes below 2 tau_y/h), each
+    node's gradient solved from the flux by bisection; x_c from p(x_c) = 0, the film from the
+    load. A solver separate from the model's finite volumes, complementarity and Newton."""
+    x = np.linspace(x_in, x_out, nodes)
+
+    def slot(g, h):  # |q| of a gradient g (Pa/m) in a slot h
+        xi = 2.0 * yield_stress / (g * h)
+        return np.where(xi < 1.0, h**3 * g / (12.0 * viscosity) * (1.0 - 1.5 * xi + 0.5 * xi**3), 0.0)
+
+    def gradient(need, h):  # g > 2 tau_y/h carrying the flux ``need``, by bisection in log g
+        low = np.log(2.0 * yield_stress / h)
+        high = low + 40.0
+        for _ in range(80):
+            mid = 0.5 * (low + high)
+            above = slot(np.exp(mid), h) > need
+            low, high = np.where(above, low, mid), np.where(above, mid, high)
+        return np.where(need > 0.0, np.exp(0.5 * (low + high)), 0.0)
+
+    def pressure(film, rupture):
+        h = film + radius - np.sqrt(radius**2 - x**2)
+        surplus = speed * (film + radius - np.sqrt(radius**2 - rupture**2)) / 2.0 - speed * h / 2.0
+        g = np.where(x <= rupture, -np.sign(surplus) * gradient(np.abs(surplus), h), 0.0)
+        return np.concatenate([[0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(x))])
+
+    def load(film):
+        rupture = brentq(lambda c: np.interp(c, x, pressure(film, c)), 1e-9, 0.999 * x_out, xtol=1e-13)
+        return np.trapezoid(np.where(x <= rupture, pressure(film, rupture), 0.0), x) * length
+
+    return brentq(lambda film: load(film) - force, 1e-7, 1e-3, xtol=1e-12)
+
+
+@pytest.mark.parametrize("nodes", [151, 201])
+def test_a_stiff_grease_line_finer_than_its_cold_start_reaches_the_shooting_solution(nodes):
+    """A smooth rigid line at tau_y = 1 kPa, 0.2 N, 1 m/s: on 151 and 201 nodes the Newton
+    from the cold start ran to a film of 5 mm and no load continuation converged (forty-fourth
+    session); the yield-stress continuation reaches it (monolithic_newton.YIELD). Measured:
+    10.324 um on 151 nodes, 10.326 um on 201, the shooting solver 10.329 um."""
+    overrides = {**SMOOTH_LINE, "mesh.nx": nodes, "mesh.x_min": -1e-3, "mesh.x_max": 1e-3, "operating.force": 0.2,
+                 "lubricant.rheology": "bingham", "lubricant.yield_stress": 1000.0}
+    scene = lc.load_scene(TABLE1, overrides)
+    ds = lc.solve(scene)
+    assert int(ds.converged) == 1, ds.attrs["notes"]
+    assert "yield-stress continuation" in ds.attrs["notes"]
+    truth = shooting_bingham_film(scene.geometry.radius, scene.geometry.length, scene.lubricant.viscosity, 1000.0,
+                                  1.0, 0.2, -1e-3, 1e-3)
+    assert float(ds["min_film_thickness"]) == pytest.approx(truth, rel=2e-3)
 
 
 def test_the_boundary_flux_takes_each_face_through_the_law():

@@ -993,6 +993,13 @@ def at_speed(model: Model, speed: float) -> Model:
     return Model.assemble(model.scene.replace({"operating.speed": float(speed)}), model.mesh, model.contact)
 
 
+def at_yield_stress(model: Model, yield_stress: float) -> Model:
+    """The same model with a grease of another yield stress (Pa)."""
+    scene = model.scene
+    return dataclasses.replace(model, scene=dataclasses.replace(
+        scene, lubricant=dataclasses.replace(scene.lubricant, yield_stress=float(yield_stress))))
+
+
 @dataclass(frozen=True)
 class Continuation:
     """A path to the scene's own point through the same model at a multiple of one of its
@@ -1006,6 +1013,8 @@ class Continuation:
 
 LOAD = Continuation("load", "force", lambda model, fraction: at_force(model, model.scene.operating.force * fraction))
 SPEED = Continuation("speed", "speed", lambda model, fraction: at_speed(model, model.scene.operating.speed * fraction))
+YIELD = Continuation("yield-stress", "yield stress",
+                     lambda model, fraction: at_yield_stress(model, model.scene.lubricant.yield_stress * fraction))
 
 
 def continued(model: Model, fraction: float, lin: Linearisation, path: Continuation, tolerance: float):
@@ -1033,17 +1042,27 @@ def continued(model: Model, fraction: float, lin: Linearisation, path: Continuat
 def continuation_paths(model: Model) -> list[tuple[Continuation, list[float]]]:
     """The paths a failed Newton tries in turn, each with the fractions its cold starts try:
     the load from 1/2, 1/4, ... of it; then, for a sliding rough contact, the speed from
-    1/2, 1/4, ... of it (the asperities carry the slower contact). Near lift-off the load
-    path crosses a touch-down (docs/physics.md section 23) and stalls: on Table 1 at 20 N and
+    1/2, 1/4, ... of it (the asperities carry the slower contact); last, for a grease, its
+    yield stress from 1/2, 1/4, ... of it (the cold start's pressure is the Newtonian film's,
+    which a lower yield stress leaves nearer the solution). Near lift-off the load path
+    crosses a touch-down (docs/physics.md section 23) and stalls: on Table 1 at 20 N and
     0.1 m/s (51 x 51), after the cold start and the load path stall, the speed path from half
     the speed converges, 9 s in all (tests/test_hard_cases.py, thirty-fifth session; 27 s
     since each stalled Newton of the load path is retried on the open film's scale). Not
     from above: cold starts at 2 to 64 times 0.158 m/s on the same mesh all failed, 39 s in
-    all."""
+    all. The yield stress's path: a smooth rigid line at 1 kPa, 0.2 N and 1 m/s on 151 or 201
+    nodes, whose Newton ran from the cold start to a film of 5 mm (the scaled Reynolds
+    residual of a smooth pressure error falls as the film thickens and the mesh refines) and
+    whose load path's cold starts all failed, converges from 1/2 of its yield stress in about
+    1 s (forty-fifth session; tests/test_yield_stress_reynolds.py against a shooting solver).
+    Last, not first: tried first, it took a 2-D rough grease at 0.003 m/s, whose coarse
+    mesh's load path converges, 47 s (1566 Newton iterations) instead of 2 s."""
     fractions = [2.0**-k for k in range(1, CONTINUATION_HALVINGS + 1)]
     paths = [(LOAD, fractions)]
     if model.hydrodynamic and model.contact is not None:
         paths.append((SPEED, fractions))
+    if yield_stress_law(model) is not None:
+        paths.append((YIELD, fractions))
     return paths
 
 
