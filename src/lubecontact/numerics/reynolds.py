@@ -342,8 +342,11 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None, 
     cavitation_jfo.JFOSolution). Compare it with the inlet flux (U/2) h_T dy.
     ``faces`` (percolation.FaceFilm): the film on the faces, as the solve used it.
     ``reduction(G, s)``: a grease's reduction factor of the Poiseuille term at the face
-    gradients G (Pa/m, along the face normal) and face contents s (m, the mean of the two
-    nodes' h_T; numerics/yield_stress_reynolds.reduction_factor), T_f r_f in place of T_f.
+    gradients G (Pa/m, the magnitude |(G_n, G_t)| of the gradient across the face and, in
+    2-D, along it: the mean of its two nodes' differences, central and one-sided at the
+    domain's edge, as the grease's outflow takes it, numerics/yield_stress_reynolds.py) and
+    face contents s (m, the mean of the two nodes' h_T;
+    numerics/yield_stress_reynolds.reduction_factor), T_f r_f in place of T_f.
     """
     expected_gap = np.asarray(expected_gap, dtype=float)
     coefficient = np.asarray(coefficient, dtype=float)
@@ -353,8 +356,13 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None, 
     tx, ty = face_transmissibilities(mesh, coefficient, faces)
     if reduction is not None:
         sx, sy = face_films(expected_gap)
-        tx = tx * reduction(np.diff(p, axis=1) / mesh.dx, sx)
-        ty = ty * reduction(np.diff(p, axis=0) / mesh.dy, sy)
+        gx, gy = np.diff(p, axis=1) / mesh.dx, np.diff(p, axis=0) / mesh.dy
+        if not mesh.line:  # each face's gradient along it
+            along_y, along_x = np.gradient(p, mesh.dy, axis=0), np.gradient(p, mesh.dx, axis=1)
+            gx = np.hypot(gx, 0.5 * (along_y[:, :-1] + along_y[:, 1:]))
+            gy = np.hypot(gy, 0.5 * (along_x[:-1, :] + along_x[1:, :]))
+        tx = tx * reduction(gx, sx)
+        ty = ty * reduction(gy, sy)
     carried = getattr(solution, "face_content", None)
     couette = couette_face_flux(mesh, expected_gap, speed, faces)
     qx = tx * (p[:, :-1] - p[:, 1:]) + (couette if carried is None else carried * couette)

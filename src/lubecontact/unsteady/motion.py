@@ -116,7 +116,7 @@ def motion_problems(scene) -> list[str]:
         problems.append(
             f"lubricant.rheology = {scene.lubricant.rheology!r} with a motion on a 2-D mesh: a grease's time steps "
             "fail there where the plug forms at rest (the connector's Bingham stop on 21 x 21 at t = 6.3 s, a "
-            "Newton step finding no descent), and their face-flux volume balance is a line's (docs/physics.md "
+            "Newton step finding no descent) or take minutes (on 51 x 51, 0.1 s of it in 3 min; docs/physics.md "
             "section 21); allowed: mesh.ny = 1, or a 'newtonian' lubricant"
         )
     m = scene.motion
