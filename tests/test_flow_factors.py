@@ -50,7 +50,7 @@ def test_expected_gap_table(H, expected):
 @pytest.mark.parametrize("H", [-30.0, -12.0, -5.0, -1.0, -0.19, 0.0, 0.3, 1.7, 4.0, 8.0])
 def test_expected_gap_equals_its_defining_integral(H):
     truth = expected_gap_by_quadrature(H)
-    assert expected_gap(H * SIGMA, SIGMA) / SIGMA == pytest.approx(truth, rel=1e-10)
+    assert expected_gap(H * SIGMA, SIGMA) / SIGMA == pytest.approx(truth, rel=1e-10, abs=0.0)
 
 
 def test_expected_gap_tends_to_h_for_thick_films():
@@ -86,7 +86,7 @@ def test_regularised_coefficient_continuous_positive_monotone(flow_factors):
     assert np.all(np.diff(k) > 0.0)
     edge = np.array([0.5 - 1e-10, 0.5]) * SIGMA
     left, right = poiseuille_coefficient(edge, SIGMA, MU, flow_factors=flow_factors)
-    assert left == pytest.approx(right, rel=1e-8)
+    assert left == pytest.approx(right, rel=1e-8, abs=0.0)
 
 
 @pytest.mark.parametrize("flow_factors", [True, False])
@@ -96,7 +96,7 @@ def test_coefficient_below_half_follows_expected_gap_cubed(flow_factors):
     for H in (-3.0, -0.7, 0.0, 0.25):
         ratio = expected_gap_by_quadrature(H) / expected_gap_by_quadrature(0.5)
         k = poiseuille_coefficient(H * SIGMA, SIGMA, MU, flow_factors=flow_factors)
-        assert k == pytest.approx(k_half * ratio**3, rel=1e-10)
+        assert k == pytest.approx(k_half * ratio**3, rel=1e-10, abs=0.0)
 
 
 def test_coefficient_above_half_is_eq2_times_plain_reynolds():

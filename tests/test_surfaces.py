@@ -79,7 +79,7 @@ def test_sine_profile_moments_exact_when_periodic():
     x = np.arange(n) * length / n
     k = 2 * math.pi * periods / length
     m = spectral_moments(from_array(amplitude * np.sin(k * x), (length,), periodic=True), cutoff=length / 10)
-    assert m.m0 == pytest.approx(amplitude**2 / 2, rel=1e-12)
+    assert m.m0 == pytest.approx(amplitude**2 / 2, rel=1e-12, abs=0.0)
     assert m.m2[0] == pytest.approx(amplitude**2 * k**2 / 2, rel=1e-12)
     assert m.m4[0] == pytest.approx(amplitude**2 * k**4 / 2, rel=1e-12)
     assert m.gamma is None
@@ -117,10 +117,10 @@ def test_height_scaling_law():
     z = isotropic_surface(lambda q: rolled_power_law(q, 2e5, 1.5e6, 0.7), 64, 64e-6, seed=3)
     base = parameters(spectral_moments(from_array(z, (64e-6, 64e-6))))
     scaled = parameters(spectral_moments(from_array(3.0 * z, (64e-6, 64e-6))))
-    assert scaled.sigma == pytest.approx(3 * base.sigma, rel=1e-12)
+    assert scaled.sigma == pytest.approx(3 * base.sigma, rel=1e-12, abs=0.0)
     assert scaled.asperity_density == pytest.approx(base.asperity_density, rel=1e-12)
     assert scaled.alpha == pytest.approx(base.alpha, rel=1e-12)
-    assert scaled.asperity_radius == pytest.approx(base.asperity_radius / 3, rel=1e-12)
+    assert scaled.asperity_radius == pytest.approx(base.asperity_radius / 3, rel=1e-12, abs=0.0)
 
 
 def test_composite_equals_summed_height_map():
