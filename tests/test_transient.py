@@ -739,11 +739,8 @@ def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch
     halved its change in that many iterations fails, naming the stall, and on a 2-D mesh
     the step is then taken by one Newton (integrator.nested_then_newton); a steady solve,
     which has no fallback, keeps iterating. With the limit at one iteration every step that
-    does not halve its change at once stalls; the step's own stopping test (a tenth of its
-    error weight, integrator.NONLINEAR_FRACTION) is tightened a millionfold so that its
-    steps need more than one iteration."""
+    does not halve its change at once stalls."""
     monkeypatch.setattr(coupling, "STEP_STALL_ITERATIONS", 1)
-    monkeypatch.setattr(integrator, "NONLINEAR_FRACTION", 1e-7)
     nested_failures = []
 
     def recorded(model, initial, **limits):
@@ -758,6 +755,31 @@ def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch
     series = lc.transient(lc.load_scene(TABLE1, overrides), progress=False)
     assert any("deformation iteration stalled" in failure for failure in nested_failures)
     assert series["converged"].item() == 1, series.attrs["notes"]
+
+
+def test_a_line_steps_nested_fallback_stalls_sooner(monkeypatch):
+    """integrator.LINE_FALLBACK_STALL_ITERATIONS: where a line step's Newton fails, the nested
+    solve that answers it fails as stalled after 20 iterations that do not halve its change,
+    not the 2-D primary's 50 (coupling.STEP_STALL_ITERATIONS). Every line Newton is made to
+    fail here, and the step's tolerance (motion.tolerance) is set so tight that the nested
+    solve's test on the film cannot be met and it stalls."""
+    failed_newton = lambda model, initial, **_: (None, coupling.Diagnostics(
+        iterations=0, deformation_residual=0.0, force_residual=0.0, reynolds_residual=0.0, converged=False,
+        stiffness=None, failure="made to fail"))
+    monkeypatch.setattr(integrator, "monolithic_solve", failed_newton)
+    failures = []
+
+    def recorded(model, initial, **limits):
+        state, diag = coupling.coupled_solve(model, initial, **limits)
+        failures.append(diag.failure)
+        return state, diag
+
+    monkeypatch.setattr(integrator, "coupled_solve", recorded)
+    scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 2e-3,
+                                   "motion.mesh_error_bar": False, "motion.tolerance": 1e-12})
+    lc.transient(scene, progress=False)
+    stalls = [int(m.group(1)) for f in failures if (m := re.search(r"has not halved in (\d+) iterations", f or ""))]
+    assert stalls and set(stalls) == {integrator.LINE_FALLBACK_STALL_ITERATIONS}, failures
 
 
 @pytest.mark.parametrize("changes, turning, period", [

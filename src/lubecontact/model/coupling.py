@@ -220,11 +220,12 @@ def nested_start(model: Model, tolerance: float, initial: WarmStart | None = Non
 
 
 def coupled_solve(model: Model, initial: WarmStart | None = None, tolerance: float | None = None,
-                  max_iterations: int | None = None) -> tuple[State, Diagnostics]:
+                  max_iterations: int | None = None, stall_iterations: int | None = None) -> tuple[State, Diagnostics]:
     """Iterate force balance and deformation to convergence; returns the state and diagnostics.
 
     ``initial``: the WarmStart to start from (None: cold); either way the fine mesh starts from the nested (coarse-mesh) solution
-    where there is one (nested_start). ``tolerance`` and ``max_iterations`` override the scene's.
+    where there is one (nested_start). ``tolerance`` and ``max_iterations`` override the scene's,
+    ``stall_iterations`` a time step's STEP_STALL_ITERATIONS.
     """
     scene = model.scene
     if scene.lubricant.rheology != "newtonian":
@@ -293,7 +294,7 @@ def coupled_solve(model: Model, initial: WarmStart | None = None, tolerance: flo
                            "alternates between two states (each change turns back on the one before)")
                     failure = f"the time step's deformation iteration {how}: its relative change repeats at {relative_change:.3g}"
                     break
-                if stalled >= STEP_STALL_ITERATIONS:
+                if stalled >= (STEP_STALL_ITERATIONS if stall_iterations is None else stall_iterations):
                     failure = (f"the time step's deformation iteration stalled: its relative change has not halved "
                                f"in {stalled} iterations (now {relative_change:.3g}, smallest {smallest_change:.3g})")
                     break

@@ -106,6 +106,16 @@ NONLINEAR_FRACTION = 0.1
 # motion.tolerance 1e-4, where the polished run gave 66.7 s; here 67.5 s
 # (bench/EXPERIMENTS.md, forty-third session).
 LINE_NEWTON_FRACTION = 0.001
+# Where a line step's Newton fails, the nested solve that answers it (step_solve) fails, as a
+# stall, once its deformation iteration has not halved its change in this many iterations,
+# not the 2-D primary's 50 (model/coupling.STEP_STALL_ITERATIONS): the step is then retried
+# shorter. Measured in the forty-fifth session (bench/EXPERIMENTS.md): on the issue's three
+# line cases (bench/solver_core.py) every such nested solve that converged took at most 18
+# iterations, and three on the 100 Pa s fretting stalled after 60 to 70 iterations, 2.9 of
+# its 8.0 s; at 20 the fretting took 6.3 s against 9.0 with the same steps and resistance to
+# the last bit, as did the 15 Newtonian line transients of the hard-case suite and the
+# Table 1 line stops at motion.tolerance 1e-4; at 10 the 20 N stop took another path.
+LINE_FALLBACK_STALL_ITERATIONS = 20
 # Steps tried over an impasse at a sealing pocket (TimeIntegrator.jump_over_impasse), each
 # four times the last: up to 4096 times the step the error test last asked for. Measured on the
 # Table 1 line stop at motion.tolerance 1e-5 (31 to 51 nodes) and the R = 5 mm stop at
@@ -418,21 +428,22 @@ def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback):
     state, diag = monolithic_solve(alone, initial, continuation=False)
     if diag.converged:
         return state, diag
-    nested_state, nested, why = nested_step(model, initial)
+    nested_state, nested, why = nested_step(model, initial, LINE_FALLBACK_STALL_ITERATIONS)
     if nested is not None and nested.converged:
         return nested_state, nested
     return state, dataclasses.replace(diag, failure=f"one Newton: {diag.failure}; then the nested coupled solve: {why}")
 
 
-def nested_step(model: Model, initial: WarmStart):
-    """(state, diagnostics, failure message) of the nested coupled solve of a step; state
-    and diagnostics None where it raised: a SolveError, or SuperLU's RuntimeError on a
+def nested_step(model: Model, initial: WarmStart, stall_iterations: int | None = None):
+    """(state, diagnostics, failure message) of the nested coupled solve of a step, which
+    fails as stalled after ``stall_iterations`` (None: model/coupling.STEP_STALL_ITERATIONS);
+    state and diagnostics None where it raised: a SolveError, or SuperLU's RuntimeError on a
     singular factor (seen in an experiment on a step of 16 times the one the error test
     asked for, where a pocket seals on the Table 1 51-node line stop at 1e-5), which the
     step's retry then answers as any failed solve, as the Newton's (monolithic_newton.newton)
     does."""
     try:
-        state, diag = coupled_solve(model, initial)
+        state, diag = coupled_solve(model, initial, stall_iterations=stall_iterations)
     except RuntimeError as err:  # SolveError is one
         return None, None, str(err)
     return state, diag, diag.failure or "it did not meet its tolerances"
