@@ -340,6 +340,18 @@ CASES = {
                                              "lubricant.creep_viscosity": 1e8},
                                      "converges by yield-stress continuation from 1/2 of the yield stress, 1.0 s "
                                      "(6.667 um, as at the default creep viscosity of 1e4 Pa s)"),
+    # a strongly shear-thinning Herschel-Bulkley film on the smooth rigid Table 1 line at 1 m/s
+    # (docs/physics.md section 21, open since the thirty-ninth session); added to the suite in
+    # the forty-fifth, when the yield stress's continuation did not reach it either
+    "herschel_bulkley_n_0_7": (False, {"effects.asperity_contact": False, "effects.elastic_deformation": False,
+                                       "mesh.ny": 1, "mesh.nx": 101, "operating.speed": 1.0,
+                                       "lubricant.rheology": "herschel_bulkley", "lubricant.yield_stress": 300.0,
+                                       "lubricant.flow_index": 0.7, "lubricant.viscosity": 0.5},
+                               "the one Newton from the cold start runs to a film of 9 mm and stalls, and no cold start "
+                               "of the load or yield-stress continuation converges, 1-2 s; a shooting solver of the "
+                               "line puts its film at 19 nm, a hundredth of the cold start's Newtonian estimate, in a "
+                               "pressure zone of about 30 um against the automatic domain's 49 um cells (on 201 and "
+                               "401 nodes over -0.3 ... 0.1 mm it fails too)"),
 }
 
 
@@ -449,6 +461,9 @@ def test_hard_case_fails_cheaply_saying_where_and_why(case, outcomes):
             notes  # the nested solver, or the one Newton and how far its continuation got
         if "speed continuation" in notes:  # the one Newton says how far each path got
             assert re.search(r"; speed continuation(?: stopped at \S+ of the speed: |: no cold start converged)", notes), notes
+        if "yield-stress continuation" in notes:
+            assert re.search(r"; yield-stress continuation(?: stopped at \S+ of the yield stress: |: no cold start "
+                             r"converged)", notes), notes
         if case == "smooth_default_mesh":  # and what an engineer can do about it
             assert "thinnest at its ends" in notes and "effects.asperity_contact" in notes, notes
         if case == "smooth_crowned_default_mesh":  # not the ends, which the crown lifts
