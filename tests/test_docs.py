@@ -125,7 +125,7 @@ FIXED = (
     "φ = 1 eV, s = 1 nm", "10⁶ Pa s", "10²⁰⁰",
     # codes, standards, publications
     "| 0 |", "| 1 |", "| 2 |", "| 3 |", "| 130 |", "exits 2", "exits 3", "exit 2", "CF-1.10", "YAML 1.1", "as 16",
-    "as 8", "as 80", "ASTM D341", "ASTM\nD1250", "section 19", "section 21", "section 22", "EIA-364-28", "EIA-364-27",
+    "as 8", "as 80", "ASTM D341", "ASTM\nD1250", "section 19", "section 20", "section 21", "section 22", "EIA-364-28", "EIA-364-27",
     "docs/physics.md section 14",
     "docs/physics.md section 17", "Wear 107, 1986", "Greenwood 1966", "Simmons 1963", "(1979)", "1979, γ = 1",
     "1.42 eV", "Phys. Rev. B 68 (2003) 035416", "0.4–2.1 pS/m", "~1000×", "~1e-4–1e-3 Ω", "some 40 formats",
