@@ -46,6 +46,7 @@ an evaluation computes its values and nothing of its structure.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
@@ -331,6 +332,31 @@ def solve_reynolds(mesh, expected_gap, coefficient, speed, cavitation=True,
     )
 
 
+@lru_cache(maxsize=8)
+def cross_gradient_operators(ny: int, nx: int, dx: float, dy: float) -> tuple[sp.csr_matrix, sp.csr_matrix] | None:
+    """(dG_t/dp of the x faces, of the y faces): (faces in C order, nodes) matrices of the
+    pressure gradient along each face, the mean of its two nodes' differences (central, one-
+    sided at the domain's edge, as numpy.gradient); None on a line (one row: no gradient along y)."""
+    if ny == 1:
+        return None
+
+    def difference(n, spacing):  # (n, n): d/ds at each of n nodes
+        rows = np.arange(n)
+        lower, upper = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
+        weight = 1.0 / ((upper - lower) * spacing)
+        return sp.csr_matrix((np.concatenate([weight, -weight]), (np.concatenate([rows, rows]),
+                                                                   np.concatenate([upper, lower]))), shape=(n, n))
+
+    def mean(n):  # (n - 1, n): the mean of each pair of neighbours
+        rows = np.arange(n - 1)
+        return sp.csr_matrix((np.full(2 * (n - 1), 0.5), (np.concatenate([rows, rows]),
+                                                          np.concatenate([rows, rows + 1]))), shape=(n - 1, n))
+
+    along_y = sp.kron(difference(ny, dy), sp.identity(nx))
+    along_x = sp.kron(sp.identity(ny), difference(nx, dx))
+    return ((sp.kron(sp.identity(ny), mean(nx)) @ along_y).tocsr(), (sp.kron(mean(ny), sp.identity(nx)) @ along_x).tocsr())
+
+
 def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None, reduction=None) -> float:
     """Net volumetric outflow of the full-film region, m^3/s: through the domain boundary plus
     into the cavitated region. Zero for a mass-conserving solution.
@@ -343,8 +369,8 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None, 
     ``faces`` (percolation.FaceFilm): the film on the faces, as the solve used it.
     ``reduction(G, s)``: a grease's reduction factor of the Poiseuille term at the face
     gradients G (Pa/m, the magnitude |(G_n, G_t)| of the gradient across the face and, in
-    2-D, along it: the mean of its two nodes' differences, central and one-sided at the
-    domain's edge, as the grease's outflow takes it, numerics/yield_stress_reynolds.py) and
+    2-D, along it, cross_gradient_operators, as the grease's outflow takes it,
+    numerics/yield_stress_reynolds.py) and
     face contents s (m, the mean of the two nodes' h_T;
     numerics/yield_stress_reynolds.reduction_factor), T_f r_f in place of T_f.
     """
@@ -357,10 +383,10 @@ def boundary_flux(mesh, solution, expected_gap, coefficient, speed, faces=None, 
     if reduction is not None:
         sx, sy = face_films(expected_gap)
         gx, gy = np.diff(p, axis=1) / mesh.dx, np.diff(p, axis=0) / mesh.dy
-        if not mesh.line:  # each face's gradient along it
-            along_y, along_x = np.gradient(p, mesh.dy, axis=0), np.gradient(p, mesh.dx, axis=1)
-            gx = np.hypot(gx, 0.5 * (along_y[:, :-1] + along_y[:, 1:]))
-            gy = np.hypot(gy, 0.5 * (along_x[:-1, :] + along_x[1:, :]))
+        along = cross_gradient_operators(*mesh.shape, mesh.dx, mesh.dy)
+        if along is not None:  # 2-D: each face's gradient along it
+            gx = np.hypot(gx, (along[0] @ p.ravel()).reshape(gx.shape))
+            gy = np.hypot(gy, (along[1] @ p.ravel()).reshape(gy.shape))
         tx = tx * reduction(gx, sx)
         ty = ty * reduction(gy, sy)
     carried = getattr(solution, "face_content", None)

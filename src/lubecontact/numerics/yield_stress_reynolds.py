@@ -9,7 +9,7 @@ normal component on the face between nodes a and b (x faces; y faces alike with 
 
 with G_f = (G_n, G_t): G_n = (p_b - p_a)/dx across the face, and in 2-D G_t along it, the
 mean of the two nodes' differences along y (central, one-sided at the domain's edge;
-cross_gradient_operators), both exact at the face's midpoint for a quadratic pressure. T_f
+reynolds.cross_gradient_operators), both exact at the face's midpoint for a quadratic pressure. T_f
 is the Newtonian transmissibility (numerics/reynolds.py), r the law's reduction factor
 k_eff(G, s)/(s^3/(12 K)) and s_f = (h_T,a + h_T,b)/2 the film content of the face (the slot
 the law sees; h itself on smooth surfaces). On rough surfaces r multiplies the Patir-Cheng
@@ -31,12 +31,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 
-from lubecontact.numerics.reynolds import ReynoldsSystem, face_transmissibilities
+from lubecontact.numerics.reynolds import ReynoldsSystem, cross_gradient_operators, face_transmissibilities
 from lubecontact.numerics.reynolds_jacobian import assembled, face_slope_pairs
 from lubecontact.numerics.reynolds_pattern import unknown_numbers
 from lubecontact.physics.percolation import face_films
@@ -81,31 +81,6 @@ def reduction_factor(gradient, content, law: YieldStressLaw):
     newtonian = content**3 / (12.0 * law.consistency)
     k, k_g, k_s = effective_coefficient(gradient, content, law)
     return k / newtonian, k_g / newtonian, (k_s - 3.0 * k / content) / newtonian
-
-
-@lru_cache(maxsize=8)
-def cross_gradient_operators(ny: int, nx: int, dx: float, dy: float) -> tuple[sp.csr_matrix, sp.csr_matrix] | None:
-    """(dG_t/dp of the x faces, of the y faces): (faces in C order, nodes) matrices of the
-    pressure gradient along each face, the mean of its two nodes' differences (central, one-
-    sided at the domain's edge, as numpy.gradient); None on a line (one row: no gradient along y)."""
-    if ny == 1:
-        return None
-
-    def difference(n, spacing):  # (n, n): d/ds at each of n nodes
-        rows = np.arange(n)
-        lower, upper = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
-        weight = 1.0 / ((upper - lower) * spacing)
-        return sp.csr_matrix((np.concatenate([weight, -weight]), (np.concatenate([rows, rows]),
-                                                                   np.concatenate([upper, lower]))), shape=(n, n))
-
-    def mean(n):  # (n - 1, n): the mean of each pair of neighbours
-        rows = np.arange(n - 1)
-        return sp.csr_matrix((np.full(2 * (n - 1), 0.5), (np.concatenate([rows, rows]),
-                                                          np.concatenate([rows, rows + 1]))), shape=(n - 1, n))
-
-    along_y = sp.kron(difference(ny, dy), sp.identity(nx))
-    along_x = sp.kron(sp.identity(ny), difference(nx, dx))
-    return ((sp.kron(sp.identity(ny), mean(nx)) @ along_y).tocsr(), (sp.kron(mean(ny), sp.identity(nx)) @ along_x).tocsr())
 
 
 def node_rows(unknown, nodes) -> sp.csr_matrix:

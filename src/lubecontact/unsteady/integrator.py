@@ -113,8 +113,9 @@ LINE_NEWTON_FRACTION = 0.001
 # line cases (bench/solver_core.py) every such nested solve that converged took at most 18
 # iterations, and three on the 100 Pa s fretting stalled after 60 to 70 iterations, 2.9 of
 # its 8.0 s; at 20 the fretting took 6.4-7.7 s against 8.7-9.3 s (three alternated runs each)
-# with the same steps and resistance to the last bit, as did the 15 Newtonian line transients of the hard-case suite and the
-# Table 1 line stops at motion.tolerance 1e-4; at 10 the 20 N stop took another path.
+# with the same steps and resistance to the last bit, as did the 15 Newtonian line transients
+# of the hard-case suite and the Table 1 line stops at motion.tolerance 1e-4; at 10 the 20 N
+# stop took another path.
 LINE_FALLBACK_STALL_ITERATIONS = 20
 # Steps tried over an impasse at a sealing pocket (TimeIntegrator.jump_over_impasse), each
 # four times the last: up to 4096 times the step the error test last asked for. Measured on the
