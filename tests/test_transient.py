@@ -734,6 +734,20 @@ def test_a_grease_in_time_is_refused_on_a_2d_mesh_only():
     assert not motion_problems(lc.load_scene(TABLE1, {**grease, "mesh.ny": 1}))
 
 
+def recorded_nested_failures(monkeypatch) -> list:
+    """The failure message of every nested coupled solve a time step runs from here on
+    ("" where it converged), in a list that fills as they run."""
+    failures = []
+
+    def recorded(model, initial, **limits):
+        state, diag = coupling.coupled_solve(model, initial, **limits)
+        failures.append(diag.failure)
+        return state, diag
+
+    monkeypatch.setattr(integrator, "coupled_solve", recorded)
+    return failures
+
+
 def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch):
     """model/coupling.STEP_STALL_ITERATIONS: a time step's deformation iteration that has not
     halved its change in that many iterations fails, naming the stall, and on a 2-D mesh
@@ -741,14 +755,7 @@ def test_a_stalled_time_step_fails_early_and_a_steady_solve_does_not(monkeypatch
     which has no fallback, keeps iterating. With the limit at one iteration every step that
     does not halve its change at once stalls."""
     monkeypatch.setattr(coupling, "STEP_STALL_ITERATIONS", 1)
-    nested_failures = []
-
-    def recorded(model, initial, **limits):
-        state, diag = coupling.coupled_solve(model, initial, **limits)
-        nested_failures.append(diag.failure)
-        return state, diag
-
-    monkeypatch.setattr(integrator, "coupled_solve", recorded)
+    nested_failures = recorded_nested_failures(monkeypatch)
     overrides = {"mesh.nx": 15, "mesh.ny": 11, "motion.kind": "stop", "motion.duration": 2e-3}
     steady = lc.solve(lc.load_scene(TABLE1, overrides))
     assert steady["converged"].item() == 1
@@ -767,14 +774,7 @@ def test_a_line_steps_nested_fallback_stalls_sooner(monkeypatch):
         iterations=0, deformation_residual=0.0, force_residual=0.0, reynolds_residual=0.0, converged=False,
         stiffness=None, failure="made to fail"))
     monkeypatch.setattr(integrator, "monolithic_solve", failed_newton)
-    failures = []
-
-    def recorded(model, initial, **limits):
-        state, diag = coupling.coupled_solve(model, initial, **limits)
-        failures.append(diag.failure)
-        return state, diag
-
-    monkeypatch.setattr(integrator, "coupled_solve", recorded)
+    failures = recorded_nested_failures(monkeypatch)
     scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 2e-3,
                                    "motion.mesh_error_bar": False, "motion.tolerance": 1e-12})
     lc.transient(scene, progress=False)
