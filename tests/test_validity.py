@@ -173,3 +173,39 @@ def _read(path):
 
     with xr.open_dataset(path) as ds:
         return ds.load()
+
+
+# Martin's rigid line with the Reynolds exit condition (docs/physics.md section 4): w' = 4.895 mu u_m R/h0
+MARTIN_EXIT = 4.895
+
+
+@pytest.mark.parametrize("nodes, low, high, noted", [(401, 0.08, 0.12, True), (801, 0.02, 0.04, True),
+                                                     (1601, 0.0, 0.01, False)])
+def test_an_unresolved_smooth_film_says_so_and_the_note_says_by_how_much(nodes, low, high, noted):
+    """The resolution note's claims (validity.resolution_note: 10 % thin at 4 cells across the
+    pressure's width, 3 % at 8, 1 % at 16) against Martin's film of the rigid smooth line at
+    0.1 m/s, 0.01 Pa s (4.895 nm, its inlet flooded within 0.02 %). Measured: 9.8 % thin on
+    401 nodes (3.9 cells), 2.9 % on 801 (8.0), 0.7 % on 1601 (16.1), where the note is gone."""
+    overrides = {"effects.asperity_contact": False, "effects.elastic_deformation": False, "mesh.ny": 1,
+                 "mesh.nx": nodes, "operating.speed": 0.1, "lubricant.viscosity": 0.01}
+    scene = lc.load_scene(TABLE1, overrides)
+    ds = lc.solve(scene)
+    assert int(ds.converged) == 1, ds.attrs["notes"]
+    martin = (MARTIN_EXIT * scene.lubricant.viscosity * 0.5 * scene.operating.speed * scene.geometry.radius
+              * scene.geometry.length / scene.operating.force)
+    assert low <= 1.0 - float(ds["min_film_thickness"]) / martin <= high
+    assert ("the fluid pressure's width" in ds.attrs["notes"]) == noted
+    if noted:
+        assert "mesh.nx of at least" in ds.attrs["notes"]
+
+
+def test_the_flags_of_a_state_that_is_no_solution_say_so():
+    """A rigid smooth line too coarse for its 4.9 nm film does not converge: its flags come from
+    the last iterate, and say so, with the note that the mesh does not resolve the film."""
+    overrides = {"effects.asperity_contact": False, "effects.elastic_deformation": False, "mesh.ny": 1,
+                 "mesh.nx": 101, "operating.speed": 0.1, "lubricant.viscosity": 0.01}
+    ds = lc.solve(lc.load_scene(TABLE1, overrides))
+    notes = ds.attrs["notes"]
+    assert int(ds.converged) == 0 and "NOT CONVERGED" in notes
+    assert "validity bulk_yield (of the last iterate, not a solution):" in notes
+    assert "the fluid pressure's width" in notes

@@ -23,7 +23,7 @@ from lubecontact.model.model import Model
 from lubecontact.model.monolithic_newton import steady_solve
 from lubecontact.model.outputs import point_outputs
 from lubecontact.model.prepare import prepare
-from lubecontact.model.validity import assess, flag_bits
+from lubecontact.model.validity import assess, flag_bits, resolution_note
 from lubecontact.numerics.blas_threads import one_blas_thread
 from lubecontact.numerics.mesh import describe_mesh
 
@@ -80,9 +80,14 @@ def solve_case(scene, fields: bool = False, initial: WarmStart | None = None):
             notes.append(SMOOTH_ENDS if scene.geometry.crown_radius is None else SMOOTH_CROWNED)
     outputs, output_notes = point_outputs(model, state)
     notes.extend(output_notes)
+    resolution = resolution_note(model, state)
+    if resolution:
+        notes.append(resolution)
     mesh = model.mesh
     validity = assess(scene, mesh, model.contact, state, model.hydrodynamic)
-    notes.extend(f"validity {flag}: {note}" for flag, note in validity.items())
+    # a state that is no solution has its flags too, but they describe where the iteration stopped
+    last = "" if diag.converged and not diag.failure else " (of the last iterate, not a solution)"
+    notes.extend(f"validity {flag}{last}: {note}" for flag, note in validity.items())
     scalars = {
         **outputs,
         "converged": int(diag.converged),

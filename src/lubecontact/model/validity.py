@@ -53,6 +53,8 @@ BANDWIDTH_CONSTANT = 0.020358  # eta R_peak sigma / sqrt(alpha), Gaussian isotro
 MIN_BANDWIDTH = 2.0
 MIN_FLOW_FACTOR_FILM = 0.5  # h/sigma where Patir-Cheng's fits begin
 INLET_FILM_DEFICIT = 0.01
+# resolution_note: about 1 % of a smooth rigid film (Martin's line: 0.8 % at 16.1 cells)
+PRESSURE_WIDTH_CELLS = 16.0
 
 
 def bandwidth(roughness) -> float:
@@ -125,6 +127,36 @@ def conductance_share(log_conductance: np.ndarray, nodal_area: np.ndarray, where
     if not np.isfinite(log_weight).any():
         return 0.0
     return share(np.exp(log_weight - np.max(log_weight)), where)
+
+
+def resolution_note(model, state) -> str | None:
+    """Where a smooth rigid film's pressure spans fewer than PRESSURE_WIDTH_CELLS cells along
+    x: a note with the width and the mesh.nx that would resolve it, else None (a film held up
+    by asperities or by the bodies' deformation spreads its pressure over their contact).
+
+    The width is the pressure's load over its peak along the row that carries most,
+    int p dx / max p (Martin's cylinder: 1.609 sqrt(2 R h0), docs/physics.md section 4). The
+    film is that zone's: on the rigid smooth line at 0.1 m/s (Martin's 4.9 nm), the film came
+    out 63 % thin at 2.2 cells, 9.9 % at 3.9, 2.9 % at 8.0 and 0.8 % at 16.1
+    (tests/test_validity.py); a Herschel-Bulkley grease's 19 nm line likewise."""
+    scene, mesh = model.scene, model.mesh
+    if not model.hydrodynamic or model.contact is not None or model.deformation is not None:
+        return None
+    pressure = np.asarray(state.fluid_pressure).reshape(mesh.shape)
+    loads = np.trapezoid(pressure, mesh.x, axis=1)
+    row = int(np.argmax(loads))
+    peak = float(np.max(pressure[row]))
+    if not peak > 0.0:
+        return None
+    width = float(loads[row]) / peak
+    cells = width / mesh.dx
+    if cells >= PRESSURE_WIDTH_CELLS:
+        return None
+    needed = int(np.ceil((scene.mesh.nx - 1) * PRESSURE_WIDTH_CELLS / cells)) + 1
+    return (f"the fluid pressure's width (its load over its peak, {width:.3g} m) spans only {cells:.3g} cells of "
+            f"{mesh.dx:.3g} m: a smooth rigid film is as thin as that zone, and a rigid line's came out 10 % thin "
+            f"at 4 cells, 3 % at 8 and 1 % at 16 (docs/physics.md section 4); use mesh.nx of at least {needed}, or a "
+            f"shorter domain (mesh.x_min, mesh.x_max)")
 
 
 def assess(scene, mesh, contact, state, hydrodynamic: bool) -> dict[str, str]:
