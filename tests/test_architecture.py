@@ -18,6 +18,7 @@ LAZY = {
     # scipy.optimize costs 0.14 s on top of scipy.sparse.linalg in every solve process
     ("model/auto_effects.py", "scipy.optimize"): "only effects: auto needs it",
     ("physics/inlet.py", "scipy.optimize"): "only a short inlet needs it",
+    ("physics/yield_stress_flow.py", "scipy.optimize"): "only a grease's flowing viscosity needs it",
     # a solve job and `lubecontact solve` write with netCDF4 and never load xarray (0.3-0.4 s)
     ("physics/rough_surface.py", "xarray"): "only the rough_contact API returns a Dataset",
     ("io/case_result.py", "xarray"): "only solve() returns a Dataset",

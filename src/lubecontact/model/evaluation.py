@@ -15,7 +15,7 @@ from lubecontact.model.model import Model, State
 from lubecontact.numerics.cavitation_jfo import solve_jfo
 from lubecontact.numerics.mesh import contact_width_estimate
 from lubecontact.numerics.reynolds import solve_reynolds
-from lubecontact.physics.film_estimates import martin_film
+from lubecontact.physics.film_estimates import entrained_film
 
 
 def evaluate(model: Model, z: float, delta: np.ndarray, cavitated_guess=None, reuse=None,
@@ -110,13 +110,14 @@ def beyond_the_radius(model: Model, film: np.ndarray) -> str:
 
 
 def film_scale(model: Model) -> float:
-    """A length on which the force changes appreciably: sigma, or a rigid Martin film."""
+    """A length on which the force changes appreciably: sigma, or a rigid Martin film (a
+    grease's at its flowing viscosity, film_estimates.entrained_film)."""
     if model.contact is not None:
         return model.contact.sigma
     if model.squeeze is not None:
         return model.squeeze.film_scale
 
-    return martin_film(model.scene)
+    return entrained_film(model.scene)
 
 
 def force_gradient(model: Model, state: State) -> np.ndarray:

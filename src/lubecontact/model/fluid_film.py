@@ -24,7 +24,7 @@ from lubecontact.physics.flow_factors import (
 )
 from lubecontact.physics.percolation import face_film
 from lubecontact.physics.shear_factors import couette_gap
-from lubecontact.physics.yield_stress_flow import YieldStressLaw
+from lubecontact.physics.yield_stress_flow import YieldStressLaw, lubricant_law
 
 # Where the mean planes interpenetrate (h < 0) the fluid sees the gap frozen at its h = 0
 # value (h_T = sigma/sqrt(2 pi)). For the film content there is a physical reason: below the
@@ -68,10 +68,7 @@ def coefficient_law(model: Model):
 def yield_stress_law(model: Model) -> YieldStressLaw | None:
     """The flow law of a grease (lubricant.rheology bingham or herschel_bulkley,
     docs/physics.md section 21), None for a Newtonian lubricant."""
-    lubricant = model.scene.lubricant
-    if lubricant.rheology == "newtonian":
-        return None
-    return YieldStressLaw(lubricant.viscosity, lubricant.yield_stress, lubricant.flow_index, lubricant.creep_viscosity)
+    return lubricant_law(model.scene.lubricant)
 
 
 def squeeze_content(model: Model, film: np.ndarray) -> ControlVolumeMean:

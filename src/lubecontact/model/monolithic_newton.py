@@ -67,11 +67,12 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import LinearOperator, gmres, splu
 
-from lubecontact.model.auto_effects import decreasing_root, operating_point
+from lubecontact.model.auto_effects import decreasing_root
 from lubecontact.model.coupling import Diagnostics, WarmStart, coupled_solve
 from lubecontact.model.evaluation import beyond_the_radius, film_scale, fluid_load, fluid_load_slopes
 from lubecontact.model.fluid_film import (fluid_exterior, fluid_faces, fluid_film, open_film_diagonal, squeeze_content,
                                           yield_stress_law)
+from lubecontact.model.grease_start import newtonian_stand_in, start_film
 from lubecontact.model.model import Model, SolveError, State
 from lubecontact.numerics.cavitation_jfo import JFOSolution, upwind_content
 from lubecontact.numerics.complementarity import fischer_burmeister
@@ -913,24 +914,24 @@ def cold_start(model: Model) -> Iterate:
     """A start from the physics: rough surfaces at the asperities' dry balance, deformed by
     their own pressure; smooth ones deformed by Hertz's pressure, the cylinder at the
     isoviscous-elastic (or rigid) film estimate (docs/physics.md sections 4-6); then the
-    Reynolds pressure of that film (numerics/reynolds.solve_reynolds)."""
-    mesh, scene = model.mesh, model.scene
+    Reynolds pressure of that film (numerics/reynolds.solve_reynolds). A smooth grease starts
+    as the Newtonian lubricant of its flowing viscosity (grease_start.newtonian_stand_in)."""
+    mesh = model.mesh
     delta = np.zeros(mesh.shape)
+    fluid = model
     if model.contact is not None:
         z = dry_position(model, delta)
         if model.deformation is not None:
             delta = model.deformation(model.contact.pressure(model.undeformed_gap + z))
             z = dry_position(model, delta)
     else:
-        estimate = operating_point(scene)
-        film = estimate.film
+        fluid = newtonian_stand_in(model)
         if model.deformation is not None:
             delta = model.deformation(hertz_pressure(model))
-            film = estimate.elastic_film
-        z = film - float(np.min(model.undeformed_gap + delta))
+        z = start_film(fluid.scene, model.deformation is not None) - float(np.min(model.undeformed_gap + delta))
     pressure = np.zeros(mesh.shape)
     if model.hydrodynamic:
-        pressure = reynolds_pressure(model, model.undeformed_gap + z + delta)
+        pressure = reynolds_pressure(fluid, model.undeformed_gap + z + delta)
     return Iterate(pressure, delta, z)
 
 

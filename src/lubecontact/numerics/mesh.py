@@ -18,7 +18,8 @@ downstream, where it cavitates.
 The inlet follows the film (docs/physics.md section 17): a film h fed from an inlet that ends at
 X = x_min/sqrt(2 R h) is short of the fully flooded one by ~2.5/X^2 (lubecontact.physics.inlet),
 and the resistance is exponential in the film. So the automatic inlet reaches at least
-INLET_FILM_LENGTHS x sqrt(2 R h_M), h_M Martin's rigid film of the scene's speed (thicker
+INLET_FILM_LENGTHS x sqrt(2 R h_M), h_M Martin's rigid film of the scene's speed (a grease's at its
+flowing viscosity, film_estimates.entrained_film; thicker
 than the elastic film at high speed, thinner below ~1 m/s, where the rough-contact scale
 s governs anyway), by whole cells of the ``[-3.5 s, 1.5 s]`` mesh added upstream: the node
 spacing, and every node of the slow cases, stay those of ``mesh.nx`` over that domain, and
@@ -43,7 +44,7 @@ from functools import cached_property
 
 import numpy as np
 
-from lubecontact.physics.film_estimates import contact_half_width, martin_film
+from lubecontact.physics.film_estimates import contact_half_width, entrained_film
 
 UPSTREAM_LENGTHS = 3.5
 DOWNSTREAM_LENGTHS = 1.5
@@ -78,12 +79,13 @@ def _rough_half_width(scene, heights: float) -> float:
 
 
 def film_inlet_length(scene) -> float:
-    """Inlet length (m) the film of the scene's speed needs: INLET_FILM_LENGTHS sqrt(2 R h_M)
-    (0 without a fluid)."""
+    """Inlet length (m) the film of the scene's speed needs: INLET_FILM_LENGTHS sqrt(2 R h_M),
+    h_M Martin's film (a grease's at its flowing viscosity: film_estimates.entrained_film;
+    0 without a fluid)."""
     if not scene.effects.hydrodynamics or scene.operating.speed == 0.0:
         return 0.0
 
-    return INLET_FILM_LENGTHS * float(np.sqrt(2.0 * scene.geometry.radius * martin_film(scene)))
+    return INLET_FILM_LENGTHS * float(np.sqrt(2.0 * scene.geometry.radius * entrained_film(scene)))
 
 
 def _far_inlet_missing(scene) -> list[str]:

@@ -38,9 +38,16 @@ times the reduction factor f in (0, 1] for Bingham.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
+
+# flowing_viscosity: a start's viscosity, so a thousandth in ln h is far below what the
+# Newton corrects; and no film is sought beyond e^40 times (or below e^-40 of) the
+# consistency's film.
+FLOWING_LOG_TOLERANCE = 1e-3
+FLOWING_LOG_REACH = 40.0
 
 
 @dataclass(frozen=True)
@@ -112,6 +119,55 @@ def effective_coefficient(gradient, gap, law: YieldStressLaw):
     d_g = np.where(yields, np.sign(gradient) * ((model_g + creep_g) / g_safe - (model + creep) / g_safe**2), 0.0)
     d_h = np.where(yields, (model_h + creep_h) / g_safe, 3.0 * plug / gap)
     return k, d_g, d_h
+
+
+def lubricant_law(lubricant) -> YieldStressLaw | None:
+    """The flow law of a scene's lubricant section: a grease's (rheology bingham or
+    herschel_bulkley), None for a Newtonian lubricant."""
+    if lubricant.rheology == "newtonian":
+        return None
+    return YieldStressLaw(lubricant.viscosity, lubricant.yield_stress, lubricant.flow_index, lubricant.creep_viscosity)
+
+
+def apparent_viscosity(shear_rate, law: YieldStressLaw):
+    """The stress over the shear rate of the unregularised law where it flows,
+    tau/gamma_dot = tau_y/gamma_dot + K gamma_dot^(n - 1) (Pa s; Bingham's mu + tau_y/gamma_dot at
+    n = 1), at ``shear_rate`` (1/s, > 0): the viscosity a Newtonian film would need to carry the
+    same shear stress at that rate (docs/physics.md section 21, "Its cold start")."""
+    shear_rate = np.asarray(shear_rate, dtype=float)
+    return law.yield_stress / shear_rate + law.consistency * shear_rate ** (law.flow_index - 1.0)
+
+
+def flowing_viscosity(film_of, speed: float, law: YieldStressLaw) -> float | None:
+    """The viscosity mu (Pa s) at which a Newtonian film carries the grease's shear: mu equal to
+    the apparent viscosity at the Couette shear rate of its own film, mu = mu_a(|U|/h(mu)), with
+    ``film_of`` the film estimate mu -> h(mu) (m) (docs/physics.md section 21, "Its cold start").
+
+    With w the consistency's share of mu_a, d ln mu_a/d ln h = 1 - n w < 1, and a film estimate
+    grows as mu^e with e <= 1 (1 for Martin's long rigid cylinder, 1/2 for the short bearing,
+    about 0.7 for the elastic film), so ln h(mu_a(U/h)) - ln h falls as ln h rises, at the rate
+    1 - e (1 - n w) > 0: one root, bracketed from the film at the consistency K by doubling
+    steps and found by Brent's method to FLOWING_LOG_TOLERANCE in ln h. None where no film up
+    to FLOWING_LOG_REACH e-folds from that one solves it: Martin's film of a yield stress that
+    alone carries the load at any film (4.9 (U/2) R L tau_y/(F U) >= 1), which grows without
+    bound."""
+    from scipy.optimize import brentq  # here: scipy.optimize costs ~0.1 s to import
+
+    rate = abs(speed)
+
+    def excess(log_film: float) -> float:
+        return math.log(film_of(float(apparent_viscosity(rate / math.exp(log_film), law)))) - log_film
+
+    start = math.log(film_of(law.consistency))
+    a, fa, step = start, excess(start), 1.0
+    while abs(a - start) < FLOWING_LOG_REACH:
+        b = a + step if fa > 0.0 else a - step
+        fb = excess(b)
+        if fa * fb <= 0.0:
+            film = math.exp(brentq(excess, min(a, b), max(a, b), xtol=FLOWING_LOG_TOLERANCE))
+            return float(apparent_viscosity(rate / film, law))
+        a, fa, step = b, fb, 2.0 * step
+    return None
 
 
 def creep_squeeze_rate(gap, half_width, law: YieldStressLaw):
