@@ -3,6 +3,7 @@ model/monolithic_newton.py; docs/physics.md section 21): the Jacobian of the ass
 residual against its finite differences, the assembled outflow against the slot law, the
 Newtonian limit, Newton's convergence, and the solvers that refuse a grease."""
 
+import re
 from types import SimpleNamespace
 
 import numpy as np
@@ -322,3 +323,20 @@ def test_full_newton_steps_converge_quadratically_near_the_solution():
     for before, after in zip(norms[:-1], norms[1:]):
         assert after <= 20.0 * before**2 or after < 1e-13
     assert norms[-1] < 1e-13
+
+
+def test_a_grease_whose_own_film_is_no_film_fails_cleanly_and_says_what_its_law_entrains():
+    """Herschel-Bulkley n = 0.3, K = 0.5 Pa s^n, 300 Pa on Table 1's rigid line at 1 m/s: its
+    flowing viscosity puts Martin's film at about 2e-19 m (h^n = 2.45 U R L K U^(n-1)/F with
+    the yield stress's share negligible, docs/physics.md section 21). Until the forty-sixth
+    session the film estimate's fixed bracket lost such films and the solve ended in a
+    ValueError from brentq; now it fails as a solve, and its notes give that film."""
+    overrides = {**SMOOTH_LINE, "mesh.nx": 201, "lubricant.rheology": "herschel_bulkley", "lubricant.yield_stress": 300.0,
+                 "lubricant.flow_index": 0.3, "lubricant.viscosity": 0.5}
+    scene = lc.load_scene(TABLE1, overrides)
+    ds = lc.solve(scene)
+    notes = ds.attrs["notes"]
+    assert int(ds.converged) == 0 and "NOT CONVERGED" in notes
+    power_law = (2.45 * scene.geometry.radius * scene.geometry.length * 0.5 / scene.operating.force) ** (1.0 / 0.3)
+    estimate = float(re.search(r"the grease's own rigid film estimate is (\S+) m", notes).group(1))
+    assert estimate == pytest.approx(power_law, rel=0.05)

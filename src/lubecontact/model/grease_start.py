@@ -22,6 +22,7 @@ import dataclasses
 from lubecontact.model.auto_effects import operating_point
 from lubecontact.model.fluid_film import yield_stress_law
 from lubecontact.model.model import Model
+from lubecontact.physics.film_estimates import entrained_film, martin_film
 from lubecontact.physics.yield_stress_flow import flowing_viscosity
 
 
@@ -52,3 +53,20 @@ def newtonian_stand_in(model: Model) -> Model:
     if viscosity is None:
         return model
     return dataclasses.replace(model, scene=with_viscosity(model.scene, viscosity))
+
+
+def entrained_film_note(model: Model) -> str | None:
+    """For a smooth grease film, the film its own law entrains (film_estimates.entrained_film,
+    Martin's at the flowing viscosity) in words, said where its solve failed: a strongly
+    shear-thinning law can put it far below any film a continuum carries (Herschel-Bulkley,
+    n = 0.3, K = 0.5 Pa s^n on Table 1's rigid line at 1 m/s: about 1e-19 m), which no mesh
+    or path reaches; None for a Newtonian or rough film, or at rest."""
+    scene = model.scene
+    if yield_stress_law(model) is None or model.contact is not None or scene.operating.speed == 0.0:
+        return None
+    film = entrained_film(scene)
+    viscosity = film / martin_film(scene) * scene.lubricant.viscosity
+    return (f"the grease's own rigid film estimate is {film:.3g} m (Martin's film at its flowing viscosity, "
+            f"{viscosity:.3g} Pa s at the shear rate {abs(scene.operating.speed) / film:.3g} 1/s, docs/physics.md "
+            f"section 21): a film or a shear rate far from those its law was measured at says the law, not the "
+            f"solver, has left its ground")

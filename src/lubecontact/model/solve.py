@@ -19,6 +19,7 @@ import time
 
 from lubecontact.io.case_result import CaseResult
 from lubecontact.model.coupling import WarmStart
+from lubecontact.model.grease_start import entrained_film_note
 from lubecontact.model.model import Model
 from lubecontact.model.monolithic_newton import steady_solve
 from lubecontact.model.outputs import point_outputs
@@ -78,6 +79,9 @@ def solve_case(scene, fields: bool = False, initial: WarmStart | None = None):
                                                           f"deformation change {diag.deformation_residual:.3g} m)"))
         if model.contact is None and model.hydrodynamic and not model.mesh.line:
             notes.append(SMOOTH_ENDS if scene.geometry.crown_radius is None else SMOOTH_CROWNED)
+        grease = entrained_film_note(model)
+        if grease:
+            notes.append(grease)
     outputs, output_notes = point_outputs(model, state)
     notes.extend(output_notes)
     resolution = resolution_note(model, state)
