@@ -353,7 +353,7 @@ def test_a_stuck_step_gives_up_after_a_few_attempts(monkeypatch):
 
     attempts = []
 
-    def failing(self, levels, t_new, order):
+    def failing(self, levels, t_new, order, **options):
         attempts.append(t_new - levels[-1].time)
         return None, "forced failure"
 
@@ -396,13 +396,13 @@ def test_a_creeping_run_stops_once_its_steps_are_far_below_what_accuracy_asks(mo
     real_step = integrator.TimeIntegrator.step
     attempts = []
 
-    def creeping(self, levels, t_new, order):
+    def creeping(self, levels, t_new, order, **options):
         if levels[-1].time < 1e-5:
-            return real_step(self, levels, t_new, order)
+            return real_step(self, levels, t_new, order, **options)
         attempts.append(t_new - levels[-1].time)
         if len(attempts) % 3:
             return None, "forced failure"
-        return real_step(self, levels, t_new, order)
+        return real_step(self, levels, t_new, order, **options)
 
     monkeypatch.setattr(integrator.TimeIntegrator, "step", creeping)
     scene = lc.load_scene(TABLE1, {"mesh.nx": 31, "mesh.ny": 1, "motion.kind": "stop", "motion.duration": 0.02})
@@ -439,11 +439,11 @@ def test_a_solver_limit_on_a_grease_at_rest_costs_a_failed_solve_per_four_accept
     def counted(scene):
         outcomes = []
 
-        def limited(self, levels, t_new, order):
+        def limited(self, levels, t_new, order, **options):
             if t_new - levels[-1].time > limit:
                 outcomes.append(False)
                 return None, "forced failure"
-            level, outcome = real_step(self, levels, t_new, order)
+            level, outcome = real_step(self, levels, t_new, order, **options)
             outcomes.append(level is not None)
             return level, outcome
 
@@ -468,10 +468,10 @@ def test_a_grease_at_rest_steps_back_from_a_level_no_step_starts_from(monkeypatc
     real_step = integrator.TimeIntegrator.step
     dead = []  # the time of the level no step starts from: the first accepted after 2 ms
 
-    def dead_end(self, levels, t_new, order, extrapolate=True):
+    def dead_end(self, levels, t_new, order, **options):
         if dead and levels[-1].time == dead[0]:
             return None, "forced dead end"
-        level, outcome = real_step(self, levels, t_new, order, extrapolate)
+        level, outcome = real_step(self, levels, t_new, order, **options)
         if level is not None and not dead and level.time > 2e-3:
             dead.append(level.time)
         return level, outcome

@@ -282,8 +282,10 @@ def newtonian_step(model: Model) -> bool:
     residual and tests"). A grease's steps keep the steady ones: with them the Bingham stop of
     the figure build (2 N, 101-node line) failed at t = 1.6 s, or, with the monotone search
     alone, ran in 200 steps against 78 and reconnected 2.7 % later (bench/EXPERIMENTS.md,
-    twentieth session): its plug leaves the pressure undetermined as the squeeze weakens."""
-    return model.squeeze is not None and yield_stress_law(model) is None
+    twentieth session): its plug leaves the pressure undetermined as the squeeze weakens.
+    A grease's step that failed them is retried once with a Newtonian film's
+    (Squeeze.step_tests, unsteady/integrator.grease_step_retry)."""
+    return model.squeeze is not None and (yield_stress_law(model) is None or model.squeeze.step_tests)
 
 
 def projects_pressure(model: Model) -> bool:
