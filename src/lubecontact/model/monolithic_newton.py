@@ -132,6 +132,12 @@ GMRES_CYCLES = 10
 # (112 / 15 / 23 factorisations), 31 x 15 3.55 / 4.72 / 3.43, 23 x 11 1.80 / 2.05 / 1.83,
 # 21 x 9 4.03 / 4.38 / 4.24; at 2 the 51 x 51 stop took 18.1 s (46 factorisations, 6 more
 # steps). On the small meshes the stale factors needed 10-30 iterations against 2-4 fresh.
+# Across time steps only: a steady solve keeps its preconditioner while GMRES meets its
+# tolerance with it within one restart cycle (KeptPreconditioner.growth None). With the
+# refresh in steady solves too, the one-Newton point at 20 N and 0.1 m/s (hard case
+# newton_lift_off_20_N_0100) took more than 120 s instead of 2.8 s: its directions took
+# another path, into GMRES solves that failed after 4-9 s each (bench/EXPERIMENTS.md,
+# forty-sixth session, bisected to the commit that brought the refresh).
 KEPT_GROWTH = 3
 # GMRES is preconditioned by the same reduced system with K cut to its near field, the
 # influence coefficients between nodes at most this many nodes apart along each axis
@@ -585,12 +591,15 @@ class KeptPreconditioner:
     time step changes c0 and the film a little, as the Newton steps of one solve change the
     film). krylov_reduced_solve reuses it while GMRES meets its tolerance with it within one
     restart cycle (GMRES_RESTART iterations, about one factorisation's time), else factorises
-    anew, and factorises anew for the next direction once it needs more than KEPT_GROWTH times
-    the iterations it needed fresh."""
+    anew, and in time factorises anew for the next direction once it needs more than
+    KEPT_GROWTH times the iterations it needed fresh (``growth``)."""
 
     preconditioner: NearFieldPreconditioner | None = None
     mesh: Mesh | None = None  # the mesh it was factorised on
     fresh_iterations: int = 0  # GMRES iterations of the direction it was factorised for
+    # dropped past this many times its fresh iterations (a run's steps); None: kept while it
+    # serves within one restart cycle (a steady solve)
+    growth: float | None = KEPT_GROWTH
 
     def serves(self, mesh: Mesh, unknowns: int) -> bool:
         """Whether a preconditioner is kept for ``mesh`` with that many Reynolds unknowns."""
@@ -601,8 +610,8 @@ class KeptPreconditioner:
         self.preconditioner, self.mesh, self.fresh_iterations = preconditioner, mesh, iterations
 
     def used(self, iterations: int):
-        """Drop the preconditioner where it needed ``iterations``, more than KEPT_GROWTH times its fresh count."""
-        if iterations > KEPT_GROWTH * max(self.fresh_iterations, 1):
+        """Drop the preconditioner where it needed ``iterations``, more than ``growth`` times its fresh count."""
+        if self.growth is not None and iterations > self.growth * max(self.fresh_iterations, 1):
             self.preconditioner = None
 
 
@@ -807,7 +816,7 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
     stiffness = None
     forcing = 0.1
     influence = dense_influence(model)
-    kept = KeptPreconditioner() if model.squeeze is None else model.squeeze.preconditioner
+    kept = KeptPreconditioner(growth=None) if model.squeeze is None else model.squeeze.preconditioner
     history = [lin.merit()]
     memory = NONMONOTONE_MEMORY if yield_stress_law(model) is None else 1
     best = (lin, None)  # the iterate of least merit, and dF/dz of its Newton direction
