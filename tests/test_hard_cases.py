@@ -43,13 +43,16 @@ BUDGET = 30  # s of wall clock per case; each measured at 0.5-17 s on the shared
 # of CPU on the slower machine of machine_slowness below. There the Herschel-Bulkley stop took
 # 25 s and its creep-1e8 twin's failure 11-15 s, and the connector grease at 0.003 m/s on 51 x 51
 # 108 s where it had taken 1.7 s, and the 10 N point near lift-off 89 s alone (22-23 s before),
-# past its stretched 60 s (111 s) beside another case in CI: a 90 s alarm. The 0.003 m/s
+# past its stretched 60 s (111 s) and 90 s (130 s) beside another case in CI: a 150 s alarm;
+# the 20 N grease stop took 220 s alone, past its stretched 150 s (216 s) in CI: 300 s. These
+# two ran 2.5-4 times as long as on the faster machine where the factorisation took 1.4-2
+# times as long: the stretch does not cover them alone. The 0.003 m/s
 # point's cold start fails there and a continuation path reaches
 # the point (the same code since the case converged, forty-sixth session): the path is as
 # fragile as round-off
 LONGER_BUDGET = {"fretting_stiff_grease": 60, "fretting_stiff_grease_51_nodes": 60, "fretting_1_Pa_s_20_N_51_nodes": 60,
-                 "fretting_10_Pa_s_20_N_51_nodes": 60, "grease_stop_20_N": 150,
-                 "newton_10_N_0063": 90, "fig12_30_N_2d_finish": 60,
+                 "fretting_10_Pa_s_20_N_51_nodes": 60, "grease_stop_20_N": 300,
+                 "newton_10_N_0063": 150, "fig12_30_N_2d_finish": 60,
                  "bingham_stop_automatic_domain_tight": 60, "grease_2d_0_003_m_s": 90}
 QUICK = {"mesh.ny": 1, "solver.max_iterations": 20}
 # a Bingham grease stopped on the 31-node line of the automatic domain (its inlet of 1 m/s)
