@@ -46,10 +46,9 @@ BUDGET = 30  # s of wall clock per case; each measured at 0.5-17 s on the shared
 # past its stretched 60 s (111 s) and 90 s (130 s) beside another case in CI: a 150 s alarm;
 # the 20 N grease stop took 220 s alone, past its stretched 150 s (216 s) in CI: 300 s. These
 # two ran 2.5-4 times as long as on the faster machine where the factorisation took 1.4-2
-# times as long: the stretch does not cover them alone. The 0.003 m/s
-# point's cold start fails there and a continuation path reaches
-# the point (the same code since the case converged, forty-sixth session): the path is as
-# fragile as round-off
+# times as long: the stretch does not cover them alone. The 0.003 m/s point's cold start fails
+# there and a continuation path reaches the point (the same code since the case converged,
+# forty-sixth session): the path is as fragile as round-off
 LONGER_BUDGET = {"fretting_stiff_grease": 60, "fretting_stiff_grease_51_nodes": 60, "fretting_1_Pa_s_20_N_51_nodes": 60,
                  "fretting_10_Pa_s_20_N_51_nodes": 60, "grease_stop_20_N": 300,
                  "newton_10_N_0063": 150, "fig12_30_N_2d_finish": 60,
@@ -409,7 +408,8 @@ REFERENCE_FACTORISATION = 0.146
 
 @functools.cache
 def machine_slowness() -> float:
-    """This machine's factorisation time over REFERENCE_FACTORISATION, at least 1 (median of 5, CPU s)."""
+    """This machine's factorisation time over REFERENCE_FACTORISATION, at least 1 (median of 5, CPU s):
+    the unit bench/solver_core.factorisation_unit times, which tests cannot import (bench is no package)."""
     second = sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(201, 201))
     laplacian = sp.csc_matrix(sp.kronsum(second, second))
     times = []
