@@ -64,9 +64,6 @@ class SqueezeTerm(Protocol):
     def outflow_scale_floor(self, cell_area: np.ndarray, pressure: float) -> np.ndarray:
         """The smallest scale (m^3/(Pa s)) of a cell's outflow in the Newton's residual."""
 
-    def usual(self) -> SqueezeTerm | None:
-        """These tests at the usual fraction where the step's own are tighter, else None."""
-
 
 class AppliedLoad(Protocol):
     """The force on the cylinder as a function of its position, where it is not the constant

@@ -701,13 +701,6 @@ def converged(model: Model, lin: Linearisation, tolerance: float, stiffness: flo
     return force_ok and reynolds_ok and deformation_ok
 
 
-def usual_tests(model: Model) -> Model | None:
-    """``model`` with its step's usual tests where its own are tighter (integrator.Squeeze.usual:
-    a line step's Newton), else None."""
-    usual = None if model.squeeze is None else model.squeeze.usual()
-    return None if usual is None else dataclasses.replace(model, squeeze=usual)
-
-
 def smoothing_for(lin: Linearisation) -> float:
     """The Fischer-Burmeister smoothing of the next step, Pa: SMOOTHING_FACTOR times the
     scaled residual norm times p_s, so it vanishes as the iteration converges (a smoothing
@@ -785,12 +778,7 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
     """Newton with backtracking from ``start``, each cell's outflow scaled by at least the
     open film's diagonal where ``open_film_floor``, the Reynolds condition in the universal
     variable where ``universal`` (linearise): (linearisation at the last iterate, iterations,
-    dF/dz, failure message or ""). A time step whose tests are tighter than the usual ones
-    (usual_tests: a line step's) takes, where it cannot meet them, the first iterate that met
-    the usual ones, else, where it stalled, its best iterate if that meets them stalled
-    (converged): the answer a second Newton from the same start judged by the usual tests would
-    give, without running its iterations again (as step_solve did until the forty-fourth
-    session: the same steps and answers to the last bit, bench/EXPERIMENTS.md)."""
+    dF/dz, failure message or "")."""
     it = start
     floor = open_film_diagonal(model) if open_film_floor else None
     try:
@@ -798,21 +786,6 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
         lin = linearise(model, it, smoothing_for(lin), floor, universal)
     except ValueError as err:
         return None, 0, None, f"the start is outside the model: {err}"
-    usual = usual_tests(model)
-    passed = None  # (linearisation, iterations, dF/dz) of the first iterate that met the usual tests
-
-    def check_usual(lin, iteration, stiffness, stalled=False):
-        nonlocal passed
-        if passed is None and usual is not None and converged(usual, lin, tolerance, stiffness, stalled):
-            passed = (lin, iteration, stiffness)
-
-    def failed(lin, iteration, stiffness, failure):
-        if passed is not None:
-            return (*passed, "")
-        if usual is not None:
-            failure += "; no iterate met the step's usual tests either"
-        return lin, iteration, stiffness, failure
-
     stiffness = None
     forcing = 0.1
     influence = dense_influence(model)
@@ -823,15 +796,13 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
     for iteration in range(1, max_iterations + 1):
         if converged(model, lin, tolerance, stiffness):
             return lin, iteration - 1, stiffness, ""
-        check_usual(lin, iteration - 1, stiffness)
         if len(history) > STALL_ITERATIONS and history[-1] > STALL_FACTOR * history[-1 - STALL_ITERATIONS]:
             best_lin, best_stiffness = best[0], stiffness if best[1] is None else best[1]
             if converged(model, best_lin, tolerance, best_stiffness, stalled=True):
                 return best_lin, iteration - 1, best_stiffness, ""
-            check_usual(best_lin, iteration - 1, best_stiffness, stalled=True)
-            return failed(lin, iteration, stiffness, (
+            return lin, iteration, stiffness, (
                 f"Newton stalled: the scaled residual norm fell from {np.sqrt(2 * history[-1 - STALL_ITERATIONS]):.3g} "
-                f"only to {np.sqrt(2 * history[-1]):.3g} in {STALL_ITERATIONS} iterations"))
+                f"only to {np.sqrt(2 * history[-1]):.3g} in {STALL_ITERATIONS} iterations")
         merit = lin.merit()
         try:
             direction = newton_direction(model, lin, forcing, influence, kept)
@@ -853,11 +824,11 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
                 direction = newton_direction(model, lin.rebranched(full.slopes), forcing, influence, kept, whole)
                 accepted, _ = line_search(model, it, lin, direction, max(history[-memory:]))
         except RuntimeError as err:
-            return failed(lin, iteration, stiffness, f"Newton step {iteration}: {err}")
+            return lin, iteration, stiffness, f"Newton step {iteration}: {err}"
         if accepted is None:
-            return failed(lin, iteration, stiffness, (
+            return lin, iteration, stiffness, (
                 f"Newton step {iteration}: no step of the Newton direction down to {SMALLEST_STEP:g} of it lowers "
-                f"the residual (scaled residual norm {np.sqrt(2 * merit):.3g})"))
+                f"the residual (scaled residual norm {np.sqrt(2 * merit):.3g})")
         trial, candidate = accepted
         it, lin = trial, candidate
         if smoothing_for(candidate) < SMOOTHING_UPDATE * candidate.smoothing:
@@ -868,8 +839,7 @@ def newton_iteration(model: Model, start: Iterate, tolerance: float, max_iterati
             best = (lin, None)
     if converged(model, lin, tolerance, stiffness):
         return lin, max_iterations, stiffness, ""
-    check_usual(lin, max_iterations, stiffness)
-    return failed(lin, max_iterations, stiffness, f"{max_iterations} Newton iterations without meeting the tolerances")
+    return lin, max_iterations, stiffness, f"{max_iterations} Newton iterations without meeting the tolerances"
 
 
 def line_search(model: Model, it: Iterate, lin: Linearisation, direction, reference: float):
