@@ -299,8 +299,8 @@ def test_a_krylov_step_meets_the_inexact_newton_condition_on_the_whole_residual(
                                    "motion.ramp": 1e-3})
     steps = []
     solve = integrator.step_solve
-    monkeypatch.setattr(integrator, "step_solve", lambda model, initial, fallback, *rest: steps.append(
-        (model, initial)) or solve(model, initial, fallback, *rest))
+    monkeypatch.setattr(integrator, "step_solve", lambda model, initial, fallback, *rest, **named: steps.append(
+        (model, initial)) or solve(model, initial, fallback, *rest, **named))
     integrator.TimeIntegrator(scene, SpeedHistory.from_scene(scene)).run(until=lambda level: level.time >= 2e-6)
     eta, eps, checked = 0.1, 1e-4, 0
     for model, initial in steps:
