@@ -93,6 +93,19 @@ def step_back_note(backs, reconnected_at: float) -> str:
             + f". {after[0].upper()}{after[1:]}")
 
 
+def step_tests_note(since: float | None) -> str:
+    """What a grease's run says whose steps switched to a Newtonian step's tests
+    (integrator.TimeIntegrator.step_tests_from: the time, s; None: they did not), "" otherwise."""
+    if since is None:
+        return ""
+    return (f"from t = {since:.6g} s the grease's steps stalled under the steady tests (solver.tolerance on "
+            "the pressure of a near-plug, which its law leaves almost free) at steps shorter than "
+            "motion.tolerance needs, so from there on each step is judged first by a Newtonian step's tests "
+            "(its film, force and outflow against the step's error weight, docs/physics.md section 20), "
+            "the steady ones after; a run at another motion.tolerance (motion.error_bar) shows how far "
+            "the times after it move")
+
+
 def times_within_jumps(jumps, located: dict[str, float]) -> str:
     """What a run says of the times it located (``located``: name -> absolute time, s: the
     reconnection, the events' edges) that fall inside an impasse jump (``impasse_jumps``),
@@ -475,6 +488,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     backs = step_back_note(integrator.step_backs, reconnected_at)
     if backs:
         notes.append(backs)
+    switched = step_tests_note(integrator.step_tests_from)
+    if switched:
+        notes.append(switched)
     located = {"the reconnection": reconnected_at} if math.isfinite(recon) else {}
     for k, event in enumerate(opened.events, start=1):
         located |= {f"event {k}'s start": event.start, f"event {k}'s end": event.end}
