@@ -402,7 +402,7 @@ class OverBudget(Exception):
     pass
 
 
-# The budgets above are wall clock on the machine of bench/SOLVER_CORE.md (2026-12-01), where
+# The budgets above are wall clock on the machine of bench/SOLVER_CORE.md at 0e5477e (2026-12-01), where
 # one SuperLU factorisation of the five-point Laplacian on 201 x 201 nodes (that file's unit)
 # took this many CPU seconds; on a slower machine each budget grows in proportion, never
 # shrinks. The forty-sixth session's machine took 0.28-0.31 s, and its cases about twice as long
