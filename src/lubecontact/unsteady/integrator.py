@@ -417,14 +417,13 @@ def step_solve(model: Model, initial: WarmStart, fallback: NewtonFallback, retry
     (nested_then_newton): the nested solve is cheaper where it converges."""
     # the nested solve has no F(z), nor a grease, nor JFO's stored content theta c
     if model.load is not None or needs_newton(model) or model.scene.effects.cavitation == "jfo":
-        if model.squeeze.step_tests and yield_stress_law(model) is not None:  # TimeIntegrator.step_tests_from
+        grease = yield_stress_law(model) is not None
+        if grease and model.squeeze.step_tests:  # TimeIntegrator.step_tests_from
+            state, diag = switched_grease_step(model, initial)
+        else:
             state, diag = monolithic_solve(model, initial, continuation=False)
-            if diag.converged:
-                return state, diag
-            model = dataclasses.replace(model, squeeze=dataclasses.replace(model.squeeze, step_tests=False))
-        state, diag = monolithic_solve(model, initial, continuation=False)
-        if not diag.converged and retrying and yield_stress_law(model) is not None:
-            state, diag = grease_step_retry(model, initial, state, diag)
+            if not diag.converged and retrying and grease:
+                state, diag = grease_step_retry(model, initial, state, diag)
         if not diag.converged:
             diag = dataclasses.replace(diag, failure=f"one Newton (the only solver of a contact with mass or "
                                                      f"spring, of a grease, or of JFO in time): {diag.failure}")
@@ -484,6 +483,22 @@ def grease_step_retry(model: Model, initial: WarmStart, state, diag: Diagnostics
         return retry_state, retry
     return state, dataclasses.replace(diag, failure=f"{diag.failure}; retried with a Newtonian step's tests: "
                                                     f"{retry.failure}")
+
+
+def switched_grease_step(model: Model, initial: WarmStart):
+    """(state, diagnostics) of a grease's step once its run has switched to a Newtonian step's
+    tests (``model``'s squeeze has ``step_tests``; TimeIntegrator.step_tests_from): those tests
+    first, then the steady ones from the same predictor; the first answer that converges, else
+    both failures named. grease_step_retry, the same tests, is not run again: from the same
+    predictor it repeats the first solve."""
+    state, diag = monolithic_solve(model, initial, continuation=False)
+    if diag.converged:
+        return state, diag
+    steady = dataclasses.replace(model, squeeze=dataclasses.replace(model.squeeze, step_tests=False))
+    steady_state, steady_diag = monolithic_solve(steady, initial, continuation=False)
+    if steady_diag.converged:
+        return steady_state, steady_diag
+    return state, dataclasses.replace(diag, failure=f"{diag.failure}; under the steady tests too: {steady_diag.failure}")
 
 
 def nested_step(model: Model, initial: WarmStart, stall_iterations: int | None = None):
@@ -879,6 +894,7 @@ class TimeIntegrator:
                             # motion.tolerance 3e-3; no other hard case gets here (bench/EXPERIMENTS.md,
                             # forty-seventh session)
                             self.step_tests_from = t
+                            self.rejected += 1
                             continue
                         if t_new - t <= MIN_STEP or failed >= MAX_FAILED_IN_A_ROW or needless or unresolved or creeping:
                             short = (f"; below motion.tolerance = {self.tolerance:g} times the {asked:.3g} s the error "
