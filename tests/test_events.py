@@ -292,7 +292,8 @@ def test_a_reconnection_after_impasse_jumps_carries_their_length():
     (absolute time) add up, by hand here, to the uncertainty reconnect_time carries (a time
     after a jump inherits where the state went within it); the note speaks where that exceeds
     motion.tolerance of the reconnect time, and says nothing below it, without a jump or
-    without a reconnection."""
+    without a reconnection; where a jump started while the contact still moved, at any share.
+    """
     levels = [SimpleNamespace(time=t, impasse=impasse) for t, impasse in
               ((0.0, ""), (1e-3, ""), (1.2e-3, "x = 0 mm"), (2e-3, ""), (12e-3, "x = 0.1 mm"), (20e-3, ""),
                (21e-3, "x = 0.2 mm"))]
@@ -306,3 +307,10 @@ def test_a_reconnection_after_impasse_jumps_carries_their_length():
     assert "impasse jumps of 0.0102 s in all (73 % of it)" in note and "reconnect_time_jumps" in note
     assert jump_share_note(1e-8, 14e-3, 1e-3) == ""  # within the accuracy asked for
     assert jump_share_note(0.0, 14e-3, 1e-3) == "" and jump_share_note(math.nan, math.inf, 1e-3) == ""
+    # a jump while the contact still moved: its length bounds nothing, so the note says so at
+    # any share and no longer claims the jumps' length as the uncertainty
+    moving = jump_share_note(jumps_before(jumps, 1.5e-3), 14e-3, 1e-3, moving=jumps_before(jumps, 1.1e-3))
+    assert "0.0002 s of them while the contact still moved" in moving and "does not bound" in moving
+    assert "motion.error_bar" in moving and "carries their length" not in moving
+    assert "(1.4 % of it)" in jump_share_note(0.2e-3, 14e-3, 0.1, moving=0.2e-3)  # below the tolerance's share too
+    assert jump_share_note(0.0, 14e-3, 1e-3, moving=0.0) == ""
