@@ -12,13 +12,14 @@ import numpy as np
 import pytest
 
 import lubecontact as lc
+from lubecontact.cli.transient import summary
 from lubecontact.model import coupling
 from lubecontact.model.monolithic_newton import NearFieldPreconditioner
 from lubecontact.unsteady import integrator
 from lubecontact.unsteady.events import dense_resistance
 from lubecontact.unsteady.integrator import SAFETY, SHRINK, bdf_coefficients, error_fraction, rejection_factor
 from lubecontact.unsteady.motion import SpeedHistory, motion_problems
-from lubecontact.unsteady.series import cycle_peaks, reconnect_time
+from lubecontact.unsteady.series import THRESHOLD_SHIFT, cycle_peaks, reconnect_time, threshold_times
 
 TABLE1 = "config/scenes/table1.yaml"
 # Table 1 as a rigid rough line contact on a coarse mesh, stopped from 1 m/s over 1 ms
@@ -184,6 +185,15 @@ def test_stop_reconnects_and_the_full_film_volume_balance_closes(rough_stops):
     t = ds["time"].values
     first = np.flatnonzero((t >= 1e-3) & (resistance <= 2 * rest))[0]
     assert t[first - 1] - 1e-3 <= recon <= t[first] - 1e-3
+    # the threshold moved a tenth either way (1.8 and 2.2 times the rest's): each crossing lies
+    # between the levels that bracket it, in order about the reconnect time, and the summary
+    # gives them
+    lower, higher = ds["reconnect_time_lower_threshold"].item(), ds["reconnect_time_higher_threshold"].item()
+    for value, share in ((lower, 1.8), (higher, 2.2)):
+        first = np.flatnonzero((t >= 1e-3) & (resistance <= share * rest))[0]
+        assert t[first - 1] - 1e-3 <= value <= t[first] - 1e-3
+    assert higher < recon < lower and ds["reconnect_time_lower_threshold"].attrs["units"] == "s"
+    assert f"reconnect_time_lower_threshold = {lower:.6g} s (the threshold 10% down" in summary(ds)
     # every step: net outflow of the pressurised region (face fluxes) = minus its volume change,
     # to the step's nonlinear tolerance: the one Newton that answers a line contact's step stops
     # at 0.001 of its error weight (integrator.LINE_NEWTON_FRACTION), well below the step's own
@@ -222,6 +232,12 @@ def test_reconnect_time_and_oscillation_metrics_from_series():
     assert reconnect_time(t, r, 2.0, 20.0, dense) == 0.0  # below the threshold when the motion stops
     assert reconnect_time(t, r, 1.0, 1e-9, dense) == math.inf
     assert math.isnan(reconnect_time(t, r, None, 10.0, dense))
+    # the threshold moved a tenth either way: R = 45 and 55, crossed at 1 + sqrt(log10(100 / R))
+    shifted = threshold_times(t, r, 1.0, 50.0, dense)
+    assert THRESHOLD_SHIFT == 0.1
+    assert shifted["reconnect_time_lower_threshold"] == pytest.approx(math.sqrt(math.log10(100.0 / 45.0)), rel=1e-8)
+    assert shifted["reconnect_time_higher_threshold"] == pytest.approx(math.sqrt(math.log10(100.0 / 55.0)), rel=1e-8)
+    assert threshold_times(t, r, 1.0, 1e-9, dense)["reconnect_time_higher_threshold"] == math.inf
     # the open fraction comes from the located events (tests/test_events.py)
     assert cycle_peaks(t, np.array([0.5, 2.0, 0.5, 3.0, 0.1]), 2.0, 2).tolist() == [2.0, 3.0]
 

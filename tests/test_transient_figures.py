@@ -57,6 +57,23 @@ def test_coinciding_reconnect_series_stay_visible():
     assert lines[1].get_markersize() < lines[0].get_markersize() and lines[1].get_zorder() > lines[0].get_zorder()
 
 
+def test_a_design_chart_bars_each_reconnect_time_by_its_threshold():
+    """Each reconnect time carries a vertical bar from the time with its threshold a tenth
+    higher to the time with it a tenth lower (series.threshold_times); a case file written
+    before those existed, or one whose lower threshold is never reached, has none."""
+    with_bars = series().assign(reconnect_time_higher_threshold=0.008, reconnect_time_lower_threshold=0.015)
+    never = series().assign(reconnect_time_higher_threshold=0.008, reconnect_time_lower_threshold=math.inf)
+    points = [{"x": 0.1, "series": 1.0, "label": "F = 1 N", "ds": with_bars},
+              {"x": 1.0, "series": 1.0, "label": "F = 1 N", "ds": series()},
+              {"x": 10.0, "series": 1.0, "label": "F = 1 N", "ds": never}]
+    fig = plots.reconnect_figure(points, "dynamic viscosity mu", "Pa s", "title")
+    ax = fig.axes[0]
+    segments = [seg for coll in ax.collections for seg in coll.get_segments()]
+    assert len(segments) == 1  # the one case with both ends finite
+    np.testing.assert_allclose(segments[0], [[0.1, 0.008], [0.1, 0.015]])
+    assert "threshold 10% higher and lower" in ax.get_title()
+
+
 def test_a_temperature_chart_keeps_zero_celsius_on_a_linear_axis():
     """The temperature design chart (config/transient.yaml figures.temperature): a cold start at
     0 C cannot sit on a log axis; the unit is written as C, not as the key's 'degC'."""

@@ -11,9 +11,10 @@ from lubecontact.io.case_schema import write_case
 from lubecontact.scene import SceneError
 from lubecontact.unsteady.dynamics import BaseExcitation
 from lubecontact.unsteady.motion import SpeedHistory
+from lubecontact.unsteady.series import THRESHOLD_SHIFT
 from lubecontact.unsteady.transient import MESH_ERROR_UNSEEN, no_reconnection_note, reconnection_start, transient
 
-WIDTH = len("reconnect_time_extrapolated")  # the summary's names, right-aligned on their '='
+WIDTH = len("reconnect_time_higher_threshold")  # the summary's names, right-aligned on their '='
 SUMMARY = ("reconnect_time", "rest_resistance", "open_fraction", "steps", "rejected_steps", "coupled_solves", "solve_time")
 
 
@@ -25,10 +26,17 @@ def summary(ds) -> str:
         var = ds[name]
         units = "" if var.attrs["units"] == "1" else f" {var.attrs['units']}"
         lines.append(f"{name:>{WIDTH}s} = {var.item():.6g}{units}")
+    if "reconnect_time_lower_threshold" in ds and math.isfinite(ds["reconnect_time"].item()):
+        for name, way in (("lower", "down; where these two spread, the threshold's choice sets the time"),
+                          ("higher", "up")):
+            value = ds[f"reconnect_time_{name}_threshold"].item()
+            lines.append(f"{f'reconnect_time_{name}_threshold':>{WIDTH}s} = {value:.6g} s (the threshold "
+                         f"{THRESHOLD_SHIFT:.0%} {way})")
     jumped = ds["reconnect_time_jumps"].item() if "reconnect_time_jumps" in ds else 0.0
     if jumped > 0.0:
         lines.append(f"{'reconnect_time_jumps':>{WIDTH}s} = {jumped:.3g} s (impasse jumps before the reconnection: "
-                     "reconnect_time is uncertain by their length)")
+                     "reconnect_time is uncertain by their length at least; notes say where a jump in "
+                     "the motion makes it more)")
     at_once = ds["reconnect_time"].item() == 0.0  # no second run: the bars are 0 (transient.error_bars)
     if "reconnect_time_error" in ds:
         lines.append(f"{'reconnect_time_error':>{WIDTH}s} = {ds['reconnect_time_error'].item():.3g} s "

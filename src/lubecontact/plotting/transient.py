@@ -7,7 +7,9 @@ times the reconnect factor as a dotted line, the reconnect time as a marker.
 temperature), one line per
 series value; a run that never reconnected within its duration is drawn as a triangle on
 the top edge, one already reconnected when the block stopped (reconnect_time = 0) as a
-triangle on the bottom edge, a run that did not converge as a red cross.
+triangle on the bottom edge, a run that did not converge as a red cross; a vertical bar on
+each time spans its threshold moved a tenth either way (reconnect_time_higher_threshold to
+reconnect_time_lower_threshold).
 (c) ``vibration_figure``: speed and resistance over the cycles with the open threshold.
 (d) ``shock_figure``: a contact on its spring struck through its base, one curve per shock:
 the base acceleration (g), the resistance with the open threshold and each discontinuity
@@ -31,6 +33,7 @@ from matplotlib.ticker import FuncFormatter
 from lubecontact.physics.yield_stress_flow import bingham_squeeze_stop_film
 from lubecontact.scene.scene import load_scene
 from lubecontact.unsteady.dynamics import BaseExcitation
+from lubecontact.unsteady.series import THRESHOLD_SHIFT
 
 
 # A title line of at most this many characters fits the figures' 6.4 in width at 9 pt.
@@ -107,6 +110,25 @@ def stop_figure(cases: list[tuple[str, object]], title: str) -> Figure:
 SERIES_MARKERS = ("o", "s", "D", "^", "v")
 
 
+# what the vertical bar on a design chart's reconnect time marks (_threshold_bars)
+THRESHOLD_BAR_TEXT = (f"bars: the reconnect time with its threshold {THRESHOLD_SHIFT:.0%} higher and lower (long "
+                      "where the resistance creeps past it: the threshold's choice then sets the time)")
+
+
+def _threshold_bars(ax, x, y, datasets, color: str, zorder: int) -> None:
+    """Vertical bars on the reconnect times ``y`` at ``x`` from each Dataset's
+    reconnect_time_higher_threshold to its reconnect_time_lower_threshold (the threshold
+    moved THRESHOLD_SHIFT either way, series.threshold_times), where both are finite; a
+    dataset written before they existed has none."""
+    ends = np.array([[float(ds[f"reconnect_time_{name}_threshold"]) if f"reconnect_time_{name}_threshold" in ds
+                      else math.nan for name in ("higher", "lower")] for ds in datasets]).reshape(-1, 2)
+    shown = np.all(np.isfinite(ends), axis=1) & np.all(ends > 0, axis=1)
+    if shown.any():
+        below, above = y[shown] - ends[shown, 0], ends[shown, 1] - y[shown]
+        ax.errorbar(x[shown], y[shown], yerr=[np.maximum(below, 0.0), np.maximum(above, 0.0)], fmt="none",
+                    ecolor=color, elinewidth=1.0, capsize=3, zorder=zorder)
+
+
 def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str, log_x: bool = True) -> Figure:
     """points: {"x", "series", "label", "ds"} of the design chart; ``log_x`` False for an x
     that may be zero or negative (a temperature in C)."""
@@ -127,6 +149,7 @@ def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str,
         size = max(9 - 2 * i, 3)
         ax.plot(x[drawn], y[drawn], "-", marker=SERIES_MARKERS[i % len(SERIES_MARKERS)], markersize=size,
                 color=color, label=line[0]["label"], zorder=2 + i)
+        _threshold_bars(ax, x[drawn], y[drawn], [p["ds"] for p, d in zip(line, drawn) if d], color, 2 + i)
         never = ~np.isfinite(y) & ok
         ax.plot(x[never], np.full(never.sum(), top), "^", color=color, markersize=size, zorder=2 + i)
         already = (y == 0) & ok
@@ -136,8 +159,8 @@ def reconnect_figure(points: list[dict], x_label: str, x_units: str, title: str,
     ax.set_yscale("log")
     ax.set_xlabel(f"{x_label} ({x_units})")
     ax.set_ylabel("reconnect time (s)")
-    ax.set_title(wrapped(title) + "\n\u25b2 not within the run; \u25bc before the block stopped; red \u00d7 not converged",
-                 fontsize=9)
+    ax.set_title(wrapped(title) + "\n\u25b2 not within the run; \u25bc before the block stopped; red \u00d7 not converged"
+                 + "\n" + wrapped(THRESHOLD_BAR_TEXT), fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     return fig

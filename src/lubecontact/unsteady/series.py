@@ -39,6 +39,9 @@ SERIES = {
     "volume_balance": ("1", "net outflow of the full-film region + its volume change rate, relative to the flows"),
     "valid": CASE["valid"],
 }
+# the reconnect threshold's shift either way for threshold_times: a tenth, a difference an
+# engineer would not argue about when choosing reconnect_factor
+THRESHOLD_SHIFT = 0.1
 SCALARS = {
     "reconnect_time": ("s", "time after the motion stops and a shock ends until contact_resistance first falls to "
                             "reconnect_factor x the resistance at rest (inf: not within duration; nan: the motion or "
@@ -55,6 +58,13 @@ SCALARS = {
     "step_backs": ("1", "levels of a yield-stress lubricant at rest dropped because no step from them converged "
                         "(the run stepped again from the level before; counted in rejected_steps too)"),
     "longest_impasse_jump": ("s", "the longest such step (0: none): a time within it is uncertain by its length"),
+    "reconnect_time_lower_threshold": ("s", f"reconnect_time with its threshold {THRESHOLD_SHIFT:.0%} lower "
+                                            f"({1.0 - THRESHOLD_SHIFT:g} x reconnect_factor x the resistance at rest; "
+                                            "inf: not within duration): far above reconnect_time where the resistance "
+                                            "creeps past the threshold, whose choice then sets the time more than the "
+                                            "contact does"),
+    "reconnect_time_higher_threshold": ("s", f"reconnect_time with its threshold {THRESHOLD_SHIFT:.0%} higher "
+                                             f"({1.0 + THRESHOLD_SHIFT:g} x reconnect_factor x the resistance at rest)"),
     "reconnect_time_jumps": ("s", "total length of the impasse jumps before the reconnection (0: none; nan: no "
                                   "reconnection): reconnect_time's uncertainty from them"),
     "reconnect_time_error": ("s", "estimated time-integration error of reconnect_time (motion.error_bar): "
@@ -146,6 +156,19 @@ def reconnect_time(time, resistance, rest_from, threshold, resistance_at) -> flo
     if step == after[0]:
         return 0.0
     return crossing_time(time, resistance, threshold, step, resistance_at) - rest_from
+
+
+def threshold_times(time, resistance, rest_from, threshold, resistance_at) -> dict[str, float]:
+    """reconnect_time_lower_threshold and reconnect_time_higher_threshold: reconnect_time
+    (same arguments) with ``threshold`` moved THRESHOLD_SHIFT down and up. Where the
+    resistance falls steeply through the threshold (an asperity contact closing) the three
+    times nearly agree; where it creeps past it they spread, and the reconnect time is the
+    threshold's choice (reconnect_factor) more than the contact's: the 1 Pa s fretting under
+    20 N crosses 2.2, 2.0 and 1.8 times its rest resistance 11.8, 11.8 and 17.8 ms after its
+    stop (bench/EXPERIMENTS.md, forty-eighth session)."""
+    return {f"reconnect_time_{name}_threshold": reconnect_time(time, resistance, rest_from, share * threshold,
+                                                                resistance_at)
+            for name, share in (("lower", 1.0 - THRESHOLD_SHIFT), ("higher", 1.0 + THRESHOLD_SHIFT))}
 
 
 def cycle_peaks(time, resistance, period, cycles) -> np.ndarray:

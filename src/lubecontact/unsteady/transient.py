@@ -27,6 +27,7 @@ from lubecontact.unsteady.series import (
     open_resistance,
     reconnect_time,
     series_dataset,
+    threshold_times,
     validity_over_time,
 )
 
@@ -476,11 +477,14 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     scalars["step_backs"] = len(integrator.step_backs)
     rows = level_rows(levels)
     resistance = np.array([row["contact_resistance"] for row in rows])
-    recon = reconnect_time(series_t, resistance, since, scene.motion.reconnect_factor * rest,
-                           dense_resistance(levels))
-    if failure and math.isinf(recon):
-        recon = math.nan  # the run ended early: "not within duration" is unknown
-    scalars["reconnect_time"] = recon
+    dense = dense_resistance(levels)
+    reconnected = {"reconnect_time": reconnect_time(series_t, resistance, since, scene.motion.reconnect_factor * rest,
+                                                    dense)}
+    reconnected |= threshold_times(series_t, resistance, since, scene.motion.reconnect_factor * rest, dense)
+    if failure:  # the run ended early: "not within duration" is unknown
+        reconnected = {name: math.nan if math.isinf(value) else value for name, value in reconnected.items()}
+    scalars |= reconnected
+    recon = reconnected["reconnect_time"]
     bars, bar_notes = error_bars(scene, history, since, rest, recon, failure, progress)
     scalars |= bars
     notes += bar_notes
