@@ -478,9 +478,9 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     rows = level_rows(levels)
     resistance = np.array([row["contact_resistance"] for row in rows])
     dense = dense_resistance(levels)
-    reconnected = {"reconnect_time": reconnect_time(series_t, resistance, since, scene.motion.reconnect_factor * rest,
-                                                    dense)}
-    reconnected |= threshold_times(series_t, resistance, since, scene.motion.reconnect_factor * rest, dense)
+    reconnect_threshold = scene.motion.reconnect_factor * rest  # ohm
+    reconnected = {"reconnect_time": reconnect_time(series_t, resistance, since, reconnect_threshold, dense)}
+    reconnected |= threshold_times(series_t, resistance, since, reconnect_threshold, dense)
     if failure:  # the run ended early: "not within duration" is unknown
         reconnected = {name: math.nan if math.isinf(value) else value for name, value in reconnected.items()}
     scalars |= reconnected
@@ -492,7 +492,7 @@ def transient(scene, progress: bool | None = None) -> xr.Dataset:
     # reconnected state of reconnect_time is the end of a relative event (docs/DESIGN.md "Time")
     min_duration = scene.interface.min_event_duration
     opened = level_events(levels, resistance, threshold, min_duration)
-    relative = level_events(levels, resistance, scene.motion.reconnect_factor * rest, min_duration)
+    relative = level_events(levels, resistance, reconnect_threshold, min_duration)
     scalars |= event_scalars(opened, relative)
     reconnected_at = math.nan if since is None else since + recon  # s since t = 0
     if since is not None:
