@@ -31,6 +31,7 @@ include: "workflow/rules/surfaces.smk"
 include: "workflow/rules/transient.smk"
 include: "workflow/rules/hysteresis.smk"
 include: "workflow/rules/report.smk"
+include: "workflow/rules/scheduler.smk"
 
 
 localrules:

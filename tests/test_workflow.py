@@ -18,6 +18,7 @@ import re
 import shutil
 import subprocess
 import sys
+import time
 from collections import Counter
 from pathlib import Path
 
@@ -406,14 +407,19 @@ def test_report_landing_page_says_what_the_run_is(built):
 @pytest.mark.slow
 def test_a_redirected_build_says_each_finished_job(built):
     """Issue 29 item 14: with the output going to a file, the default profile still prints a
-    line per finished job (no progress bar can), and Snakemake's log file holds them too."""
+    line per finished job (no progress bar can), and Snakemake's log file holds them too.
+    And the run ends with its log: the scheduler's pending re-examinations, one profile
+    timespan (60 s) long, are cancelled once the run is over (workflow/rules/scheduler.smk)."""
     done = snakemake(built, *PROFILE, "--cores", "2", *TINY, "--forcerun", "plot", "results/test/figures/fig04.png",
                      "results/test/figures/fig05.png")
+    ended = time.time()
     printed = done.stdout + done.stderr
     jobs = int(re.search(r"total\s+(\d+)", printed).group(1))
     assert printed.count("Finished jobid") == jobs and f"{jobs} of {jobs} steps (100%) done" in printed
     log = Path(re.search(r"Complete log\(s\): (\S+)|Complete Log: (\S+)", printed).group(0).split()[-1])
     assert log.read_text().count("Finished jobid") == jobs
+    timespan = yaml.safe_load((ROOT / "workflow/profiles/default/config.yaml").read_text())["max-jobs-per-timespan"]
+    assert timespan == "1000/60s" and ended - log.stat().st_mtime < 20.0, ended - log.stat().st_mtime
 
 
 @pytest.mark.slow
